@@ -1,0 +1,17 @@
+#pragma once
+// CSV output with a header of labels, written atomically (temporary file, then rename).
+#include <string>
+
+#include "mo2d/inverse.hpp"
+
+namespace mo2d {
+
+// Write `content` to `path` atomically: path.tmp.<pid> is written, flushed and renamed.
+void write_file_atomically(const std::string& path, const std::string& content);
+
+// Columns: t, coordinates, quasi-velocities, their derivatives (label + ".dot"), efforts,
+// reactions, residual.position, residual.velocity, residual.acceleration.
+std::string inverse_csv(const InverseResult& r);
+void write_inverse_csv(const InverseResult& r, const std::string& path);
+
+}  // namespace mo2d

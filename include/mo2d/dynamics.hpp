@@ -1,0 +1,36 @@
+#pragma once
+// Mass and applied forces of the nodal formulation (Orsino eq. 5.25-5.27, errata applied).
+//
+// Each body has its own local slots: nodes (x, y) and its rotation rate. With the centre of mass
+// given by nodes i, j and (gamma, rho), v* = J (v_i, v_j), J = [J_i J_j],
+//   J_i = [1-gamma  rho; -rho  1-gamma],  J_j = [gamma  -rho; rho  gamma],
+// so the kinetic energy 1/2 m |v*|^2 + 1/2 I w^2 gives the constant mass matrix m J^T J (+) I, and
+// a force F at a body point with coefficients (gamma_p, rho_p) has generalized force J_p^T F.
+// Reduced vectors are obtained by summing the local slots into the model variables (eq. 5.27).
+#include <Eigen/Core>
+
+#include "mo2d/model.hpp"
+
+namespace mo2d {
+
+using Eigen::MatrixXd;
+using Eigen::VectorXd;
+
+// Local generalized inertia force M_b a_b for every body (concatenated, Body::offset).
+void body_inertia(const Model& m, const Eigen::Ref<const VectorXd>& a1, Eigen::Ref<VectorXd> local);
+// Local applied generalized forces (gravity, forces, torques) at time t.
+void body_applied(const Model& m, const Eigen::Ref<const VectorXd>& q0, double t,
+                  Eigen::Ref<VectorXd> local);
+// Sum local slots into reduced variables: out += P^T local.
+void scatter_local(const Model& m, const Eigen::Ref<const VectorXd>& local,
+                   Eigen::Ref<VectorXd> out);
+
+// Dense reduced mass matrix (n1 x n1), for checks and the Lagrange formulation.
+MatrixXd mass_matrix(const Model& m);
+// Reduced applied forces f(q0, t) (n1).
+void applied_forces(const Model& m, const Eigen::Ref<const VectorXd>& q0, double t,
+                    Eigen::Ref<VectorXd> f);
+// Input matrix B (n1 x inputs): generalized force per unit effort.
+MatrixXd input_matrix(const Model& m);
+
+}  // namespace mo2d

@@ -1,0 +1,22 @@
+#pragma once
+// The one exception type of mo2d: every message names the element (body, joint, coordinate,
+// constraint) and, for a run, the time at which the problem was found.
+#include <limits>
+#include <stdexcept>
+#include <string>
+
+namespace mo2d {
+
+class Error : public std::runtime_error {
+ public:
+  explicit Error(const std::string& what, std::string element = {},
+                 double time = std::numeric_limits<double>::quiet_NaN())
+      : std::runtime_error(what), element_(std::move(element)), time_(time) {}
+  const std::string& element() const { return element_; }  // label of the offending element
+  double time() const { return time_; }                    // NaN when not raised during a run
+ private:
+  std::string element_;
+  double time_;
+};
+
+}  // namespace mo2d

@@ -1,0 +1,105 @@
+#pragma once
+// Inverse dynamics (Orsino §4.4, Theorem 4.3): prescribe as many coordinates as the mechanism has
+// degrees of freedom; at each sample solve positions exactly (Newton), then velocities and
+// accelerations ([A; E] q1 = [b; s_dot], [A; E] a1 = [c; s_ddot]), then the efforts u from
+// C^T (M a1 - f - B u) = 0 with C = K^-1 [0; I] the orthogonal complement whose independent
+// variables are the prescribed coordinates (eq. 2.29), and the constraint multipliers / joint
+// reactions.
+#include <Eigen/Core>
+#include <Eigen/LU>
+#include <functional>
+#include <span>
+#include <string>
+#include <vector>
+
+#include "mo2d/jet.hpp"
+#include "mo2d/model.hpp"
+
+namespace mo2d {
+
+using Eigen::MatrixXd;
+using Eigen::VectorXd;
+
+// A prescribed coordinate: s(t) evaluated on Jet(t, 1, 0) gives s, s_dot, s_ddot exactly.
+struct Prescribed {
+  std::string coordinate;  // coordinate label, e.g. "crank.angle", "slider.P.x", "slide.q"
+  std::function<Jet(Jet t)> motion;
+};
+
+enum class ComplementMethod {
+  prescribed,  // C = K^-1 [0; I] from the factorization of K = [A; E] (default, fastest)
+  recursive,   // S = R C built over the subsystem tree (Theorem 2.10)
+};
+
+struct InverseOptions {
+  double t0 = 0, t1 = 1;
+  int samples = 501;
+  double position_tolerance = 1e-12;  // |psi|_inf, relative to Model::scale
+  int max_newton_iterations = 30;
+  double singular_pivot_ratio = 1e-10;  // min/max |pivot| of K below which a sample is singular
+  ComplementMethod complement = ComplementMethod::prescribed;
+};
+
+// Workspace of one inverse-dynamics run (Pinocchio's Data): everything the per-sample loop
+// needs is allocated here once.
+struct InverseData {
+  InverseData(const Model& m, std::span<const Prescribed> prescribed, const InverseOptions& o = {});
+
+  InverseOptions options;
+  std::vector<int> p_index;  // prescribed coordinate indices
+  std::vector<std::function<Jet(Jet)>> p_motion;
+  std::vector<std::string> p_labels;
+
+  // results of the last sample (written by inverse_dynamics_sample)
+  double t = 0;
+  VectorXd q0, q1, a1;      // coordinates, quasi-velocities, quasi-accelerations
+  VectorXd u;               // efforts, one per input (Model::inputs)
+  VectorXd lambda;          // multipliers of the velocity rows (M a1 = f + B u - A^T lambda)
+  VectorXd reactions;       // Model::reactions
+  double residual_position = 0, residual_velocity = 0, residual_acceleration = 0;
+  int newton_iterations = 0;
+  double pivot_ratio = 0;   // min/max |pivot| of the LU of K (a cheap conditioning indicator)
+
+  // workspace
+  std::vector<int> colmap;  // coordinate -> free column (-1 prescribed)
+  VectorXd s, s_dot, s_ddot, psi, trial, q0_trial, b, c, rhs, w, f, local, local_a, z;
+  MatrixXd J, K, B, Y, CtB, S;
+  Eigen::PartialPivLU<MatrixXd> lu_pos, lu_K, lu_u;
+  std::vector<double> edge_force;  // per merge edge: 2 (node) or 1 (rotation) values
+  std::vector<int> edge_offset;
+  struct Entry {
+    int row, slot;
+    double value;
+  };
+  std::vector<Entry> entries;  // A entries attributed to body slots (for reactions)
+  bool has_previous = false;
+  double t_prev = 0;
+  VectorXd q0_prev, q1_prev, a1_prev;
+};
+
+// Solve one sample at time t (no heap allocation). Throws Error (with the time) at a singular
+// configuration or when the positions cannot be solved.
+void inverse_dynamics_sample(const Model& m, InverseData& d, double t);
+
+struct InverseResult {
+  std::vector<std::string> coordinate_labels, rate_labels, input_labels, reaction_labels;
+  VectorXd time;
+  MatrixXd q0, q1, a1;  // samples x n0 / n1 / n1
+  MatrixXd efforts;     // samples x inputs
+  MatrixXd reactions;   // samples x reactions
+  MatrixXd residuals;   // samples x 3: position, velocity, acceleration (inf norms)
+  double cpu_seconds = 0;
+  int column(const std::string& label) const;  // index in coordinate labels
+  int input(const std::string& label) const;
+  int reaction(const std::string& label) const;
+};
+
+// Whole run: options.samples equally spaced samples in [t0, t1].
+InverseResult inverse_dynamics(const Model& m, std::span<const Prescribed> prescribed,
+                               const InverseOptions& options);
+
+// Orthogonal complement S of A (n1 x dof, A S = 0) built recursively over the subsystem tree:
+// S = R C, R = blockdiag(I, S_children), C = null(A_external R) (Theorem 2.10).
+MatrixXd recursive_complement(const Model& m, const Eigen::Ref<const MatrixXd>& A);
+
+}  // namespace mo2d

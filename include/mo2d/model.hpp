@@ -1,0 +1,204 @@
+#pragma once
+// Model: the constant, compiled description of a mechanism (Pinocchio's Model): variables with
+// labels, bodies with their constant mass data, constraints, inputs, loads and the subsystem tree.
+// It is built once from a System by build_model() and never written by an algorithm.
+//
+// Variables (Orsino §5.3): q0 = node coordinates (two per independent node), slider coordinates,
+// extra coordinates. q1 = the rates of q0 in the same order (so d/dt q0 = q1.head(n0), the
+// kinematic map Z = [I 0] is constant), followed by one rotation rate per independent body
+// rotation. Revolute joints eliminate the slave node's variables (eq. 5.27); prismatic joints
+// eliminate the slave body's rotation rate (eq. 5.30).
+#include <Eigen/Core>
+#include <functional>
+#include <span>
+#include <string>
+#include <unordered_map>
+#include <vector>
+
+#include "mo2d/jet.hpp"
+#include "mo2d/system.hpp"
+
+namespace mo2d {
+
+// Which revolute/prismatic joints are reduced by variable elimination.
+enum class Reduction {
+  flat,        // all of them (Mo2DPack's VariableReduction on the flattened mechanism)
+  subsystems,  // only joints inside one subsystem; joints between subsystems are constraint rows
+  none,        // none: every joint is a constraint row (the Lagrange-multiplier formulation)
+};
+
+struct BuildOptions {
+  Reduction reduction = Reduction::flat;
+  double assembly_tolerance = 1e-12;  // relative to the mechanism's size
+  bool assemble = true;               // assemble the initial configuration and check ranks
+};
+
+// A body-local slot: node k of a body has slots 2k (x) and 2k+1 (y); the rotation rate has 2n.
+struct NodeRef {
+  int var = -1;    // index of x in q0 (and q1); y is var + 1; -1: fixed node (ground)
+  Vec2 fixed{0, 0};  // position when var == -1
+  int body = -1;   // body index, -1 for ground
+  int local = -1;  // node index within the body
+};
+struct OmegaRef {
+  int var = -1;   // index in q1; -1: zero (ground, or a body without rotation)
+  int body = -1;  // -1 for ground
+};
+// A reference to one quasi-velocity with its body-local slot (for reaction bookkeeping).
+struct VarRef {
+  int var = -1;
+  int body = -1;
+  int slot = -1;
+};
+
+struct Body {
+  std::string name;
+  std::vector<std::string> node_names;  // full labels
+  std::vector<NodeRef> nodes;
+  std::vector<Vec2> geometry;  // node positions that define the rigid shape (initial, world)
+  OmegaRef omega;              // rotation rate (var -1 if the body has none)
+  bool has_omega = false;      // >= 2 nodes, or one node with inertia > 0
+  double mass = 0, inertia = 0;
+  int ci = 0, cj = -1;         // centre of mass by local nodes (cj = -1: at node ci)
+  double gamma = 0, rho = 0;   // Example 2.6 (b)
+  double l01 = 0;              // distance of nodes 0 and 1 (rigid rows)
+  std::vector<Vec2> frame;     // node k >= 2: p_k = p_0 + a d + b z x d, d = p_1 - p_0
+  int owner = 0;               // subsystem tree node
+  int offset = 0;              // first local slot in a concatenation over all bodies
+  int slots() const { return 2 * static_cast<int>(geometry.size()) + 1; }
+};
+
+enum class ConstraintKind { rigid, revolute, prismatic, slot, coordinate, user_position, user_velocity };
+
+struct Constraint {
+  ConstraintKind kind;
+  std::string name;
+  int owner = 0;
+  int body = -1;           // rigid
+  NodeRef a, b;            // revolute (a on body 1, b on body 2)
+  NodeRef i, j, s;         // prismatic/slot: axis i -> j (body 1), slider s (body 2)
+  int q = -1;              // slider coordinate
+  double length = 0;       // |p_j - p_i| (constant)
+  int body1 = -1, body2 = -1;
+  bool lock_position = false, lock_velocity = false;
+  double lock_angle = 0;   // theta_2 - theta_1 at the initial configuration
+  OmegaRef w1, w2;
+  // extra coordinate: d/dt q[coord] = sum rate_terms; position invariant
+  //   q[coord] - sum coord_terms - sum angle_terms(theta_body) - offset = 0 (mod 2 pi if angles)
+  int coord = -1;
+  std::vector<std::pair<VarRef, double>> rate_terms;
+  std::vector<std::pair<int, double>> coord_terms;
+  std::vector<std::pair<int, double>> angle_terms;  // (body, weight); body -1 = ground
+  bool holonomic = true;
+  double offset = 0;
+  // user constraints
+  std::vector<VarRef> args, rates;
+  std::function<Jet(std::span<const Jet>, Jet)> psi;
+  std::function<Jet(std::span<const Jet>, std::span<const Jet>, Jet)> g;
+  // rows
+  int row0 = 0, nrow0 = 0;  // position rows
+  int row1 = 0, nrow1 = 0;  // velocity rows
+};
+
+struct Input {
+  std::string label;  // "drive.torque", "slide.force"
+  std::string joint;
+  std::vector<std::pair<VarRef, double>> terms;  // column of B (generalized force per unit effort)
+};
+
+struct PointLoad {
+  std::string name;
+  int body = -1;
+  int ci = 0, cj = -1;  // point by local nodes, like the centre of mass
+  double gamma = 0, rho = 0;
+  Signal fx, fy;
+};
+struct TorqueLoad {
+  std::string name;
+  int body = -1;
+  Signal torque;
+};
+
+// A joint eliminated by variable reduction: its reaction is recovered by splitting the merged
+// node's (or rotation's) generalized force between the bodies that share it.
+struct MergeEdge {
+  int parent_body = -1;  // -1: ground
+  int child_body = -1;
+  int child_slot = -1;   // body-local slot of x (node) or of the rotation
+  bool rotation = false;
+  int reaction = -1;     // first reaction column it fills (x, y; or the torque)
+  double sign = 1;       // +1 if the child is the joint's body 2
+  std::vector<int> child_edges;  // edges whose parent is this edge's child at the same slot
+};
+
+struct Reaction {
+  std::string label;  // "elbow.Fx"
+  int row = -1;       // velocity row whose multiplier gives it: value = factor * lambda
+  double factor = -1;
+};
+
+struct TreeNode {
+  std::string name;  // instance path, "" for the root
+  int parent = -1;
+  std::vector<int> children;
+  std::vector<int> vars;  // q1 variables owned here
+  std::vector<int> rows;  // velocity rows owned here
+};
+
+struct Model {
+  std::string name;
+  int n0 = 0, n1 = 0;  // coordinates, quasi-velocities
+  int m0 = 0, m1 = 0;  // position rows, velocity rows
+  int dof = 0;         // n1 - rank(A) at the initial configuration
+  bool holonomic = true;
+  Reduction reduction = Reduction::flat;
+  double scale = 1;    // characteristic length (m)
+
+  std::vector<std::string> coordinate_labels;  // n0
+  std::vector<std::string> rate_labels;        // n1
+  std::vector<std::string> position_row_labels, velocity_row_labels;
+  std::unordered_map<std::string, int> coordinate_index, rate_index;  // includes aliases
+  std::vector<VarRef> rate_refs;  // n1: first body/slot owning each quasi-velocity
+
+  std::vector<Body> bodies;
+  std::vector<std::string> ground_names;
+  std::vector<Vec2> ground_positions;
+  std::vector<Constraint> constraints;
+  std::vector<Input> inputs;
+  std::vector<Reaction> reactions;
+  std::vector<MergeEdge> merge_edges;  // in post-order (children before parents)
+  int n_slots = 0;  // local slots of all bodies
+  int n_reactions() const { return static_cast<int>(reactions.size()); }
+  int n_inputs() const { return static_cast<int>(inputs.size()); }
+
+  Vec2 gravity{0, 0};
+  std::vector<PointLoad> forces;
+  std::vector<TorqueLoad> torques;
+
+  std::vector<TreeNode> tree;  // tree[0] is the root
+  Eigen::VectorXd q0;          // initial configuration (assembled)
+
+  int coordinate(const std::string& label) const;  // throws Error naming the label
+  int rate(const std::string& label) const;
+};
+
+Model build_model(const System& system, const BuildOptions& options = {});
+
+// Position of node k of body b for coordinates q0.
+inline Vec2 node_position(const NodeRef& n, const Eigen::Ref<const Eigen::VectorXd>& q0) {
+  return n.var < 0 ? n.fixed : Vec2(q0[n.var], q0[n.var + 1]);
+}
+inline Vec2 node_velocity(const NodeRef& n, const Eigen::Ref<const Eigen::VectorXd>& q1) {
+  return n.var < 0 ? Vec2(0, 0) : Vec2(q1[n.var], q1[n.var + 1]);
+}
+inline double omega_value(const OmegaRef& w, const Eigen::Ref<const Eigen::VectorXd>& q1) {
+  return w.var < 0 ? 0.0 : q1[w.var];
+}
+// Centre-of-mass position, velocity and body angle (angle of node 1 seen from node 0).
+Vec2 com_position(const Body& b, const Eigen::Ref<const Eigen::VectorXd>& q0);
+double body_angle(const Body& b, const Eigen::Ref<const Eigen::VectorXd>& q0);
+
+// Human-readable summary: variables, constraints, inputs, DOF.
+std::string describe(const Model& model);
+
+}  // namespace mo2d

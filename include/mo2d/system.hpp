@@ -1,0 +1,199 @@
+#pragma once
+// The description of a mechanism as a user writes it: plain definition structs collected in a
+// System. A System is one node of the tree of subsystems (Orsino, Theorem 2.10): it owns bodies,
+// joints, extra coordinates and constraints, and may contain instances of other Systems, each with
+// its own name and placement. Names are local to a System; a parent reaches into an instance with
+// "instance.body.node". The ground (base body, Mo2DPack's body 0) is called "ground" everywhere.
+//
+// Sign conventions (all angles counter-clockwise, SI units):
+//  - a revolute joint between node_a (body 1) and node_b (body 2): the actuator torque u acts on
+//    body 2 and -u on body 1, so its power is u * (omega_2 - omega_1); the reaction (Fx, Fy) is the
+//    force that body 1 exerts on body 2 at the joint;
+//  - a prismatic joint / pin-in-slot: the axis is fixed in the body of axis_from/axis_to, the slider
+//    node belongs to body 2; the slider coordinate q is the signed distance of the slider node from
+//    axis_from towards axis_to (eq. 5.31, corrected); the actuator force u pushes body 2 along
+//    +axis (power u * q_dot); (Fx, Fy) is the force of the joint on body 2 at the slider node
+//    (actuator included), T the torque of the rotation lock on body 2 (prismatic only).
+#include <Eigen/Core>
+#include <functional>
+#include <memory>
+#include <optional>
+#include <span>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "mo2d/jet.hpp"
+
+namespace mo2d {
+
+using Vec2 = Eigen::Vector2d;
+
+struct NodeDef {
+  std::string name{};
+  Vec2 position{0, 0};  // initial (approximate) coordinates, in the System's own frame
+};
+
+// Centre of mass: Example 2.6 (b) r(b*|b_i) = gamma r(b_j|b_i) + rho z x r(b_j|b_i), or a point
+// (converted to gamma, rho on the body's first two nodes), or a node.
+struct CenterOfMass {
+  enum class Kind { node, nodes, point } kind = Kind::node;
+  std::string node_i{}, node_j{};  // node names local to the body
+  double gamma = 0, rho = 0;
+  Vec2 point{0, 0};
+  static CenterOfMass at_node(std::string node) {
+    CenterOfMass c;
+    c.kind = Kind::node;
+    c.node_i = std::move(node);
+    return c;
+  }
+  static CenterOfMass between(std::string node_i, std::string node_j, double gamma,
+                              double rho = 0) {
+    CenterOfMass c;
+    c.kind = Kind::nodes;
+    c.node_i = std::move(node_i);
+    c.node_j = std::move(node_j);
+    c.gamma = gamma;
+    c.rho = rho;
+    return c;
+  }
+  static CenterOfMass at_point(Vec2 p) {
+    CenterOfMass c;
+    c.kind = Kind::point;
+    c.point = p;
+    return c;
+  }
+};
+
+struct BodyDef {
+  std::string name{};
+  std::vector<NodeDef> nodes{};// one node: a point mass (with a rotation only if inertia > 0)
+  double mass = 0;             // kg, >= 0
+  double inertia = 0;          // kg m^2 about the centre of mass, >= 0
+  std::optional<CenterOfMass> com{};  // default: the first node
+};
+
+struct RevoluteDef {
+  std::string name{};
+  std::string node_a{}, node_b{};  // "body.node" or "ground.node"; node_b's variables are eliminated
+  bool actuated = false;       // adds the input "name.torque"
+};
+
+struct PrismaticDef {
+  std::string name{};
+  std::string axis_from{}, axis_to{};// two nodes of body 1 ("ground.node" allowed)
+  std::string slider{};              // node of body 2
+  bool actuated = false;           // adds the input "name.force"
+};
+
+struct PinInSlotDef {
+  std::string name{};
+  std::string axis_from{}, axis_to{};
+  std::string pin{};
+  bool actuated_slide = false;     // input "name.force"
+  bool actuated_rotation = false;  // input "name.torque" (between the two bodies)
+};
+
+// Extra coordinate defined by its rate (Mo2DPack AddCoordinate): d/dt name = sum c_k * qv_k, over
+// quasi-velocity labels such as "crank.w" (body rotation rate), "slide.v", "crank.A.vx".
+// Rates of coordinates and body rotations with integer weights give an exact position invariant.
+struct CoordinateDef {
+  std::string name{};
+  std::vector<std::pair<std::string, double>> rate{};
+  std::optional<double> initial{};  // default: the value implied by the initial configuration
+};
+
+// User constraint at position level: psi(x, t) = 0, x = the coordinates named in args.
+struct PositionConstraintDef {
+  std::string name{};
+  std::vector<std::string> args{};// coordinate labels ("crank.A.x", "slide.q", "crank.angle")
+  std::function<Jet(std::span<const Jet> x, Jet t)> psi{};
+};
+
+// User constraint at velocity level, linear in the quasi-velocities: g(x, v, t) = 0.
+struct VelocityConstraintDef {
+  std::string name{};
+  std::vector<std::string> coords{};  // coordinate labels the coefficients depend on
+  std::vector<std::string> rates{};   // quasi-velocity labels it is linear in
+  std::function<Jet(std::span<const Jet> x, std::span<const Jet> v, Jet t)> g{};
+};
+
+using Signal = std::function<double(double t)>;
+
+// A force applied at a point fixed in a body (given in the System's frame at the initial
+// configuration) or a pure torque on a body.
+struct ForceDef {
+  std::string name{};
+  std::string body{};
+  Vec2 point{0, 0};
+  Signal fx{}, fy{};  // empty = 0
+};
+struct TorqueDef {
+  std::string name{};
+  std::string body{};
+  Signal torque{};
+};
+
+struct Placement {
+  Vec2 offset{0, 0};
+  double angle = 0;  // rad, applied before the offset
+  Vec2 apply(const Vec2& p) const;
+  double rotate_angle(double a) const { return a + angle; }
+};
+
+class System;
+
+struct Instance {
+  std::string name{};
+  std::shared_ptr<const System> system{};
+  Placement placement{};
+};
+
+class System {
+ public:
+  explicit System(std::string name = "root") : name_(std::move(name)) {}
+
+  System& add_ground_node(std::string name, Vec2 position);
+  System& add_body(BodyDef body);
+  System& add_revolute(RevoluteDef joint);
+  System& add_prismatic(PrismaticDef joint);
+  System& add_pin_in_slot(PinInSlotDef joint);
+  System& add_coordinate(CoordinateDef coordinate);
+  System& add_constraint(PositionConstraintDef constraint);
+  System& add_constraint(VelocityConstraintDef constraint);
+  System& add_force(ForceDef force);
+  System& add_torque(TorqueDef torque);
+  System& add_instance(std::string name, const System& sub, Placement placement = {});
+  System& set_gravity(Vec2 g);
+
+  const std::string& name() const { return name_; }
+  const std::vector<NodeDef>& ground() const { return ground_; }
+  const std::vector<BodyDef>& bodies() const { return bodies_; }
+  const std::vector<RevoluteDef>& revolutes() const { return revolutes_; }
+  const std::vector<PrismaticDef>& prismatics() const { return prismatics_; }
+  const std::vector<PinInSlotDef>& slots() const { return slots_; }
+  const std::vector<CoordinateDef>& coordinates() const { return coordinates_; }
+  const std::vector<PositionConstraintDef>& position_constraints() const { return pos_; }
+  const std::vector<VelocityConstraintDef>& velocity_constraints() const { return vel_; }
+  const std::vector<ForceDef>& forces() const { return forces_; }
+  const std::vector<TorqueDef>& torques() const { return torques_; }
+  const std::vector<Instance>& instances() const { return instances_; }
+  const Vec2& gravity() const { return gravity_; }
+
+ private:
+  std::string name_;
+  std::vector<NodeDef> ground_;
+  std::vector<BodyDef> bodies_;
+  std::vector<RevoluteDef> revolutes_;
+  std::vector<PrismaticDef> prismatics_;
+  std::vector<PinInSlotDef> slots_;
+  std::vector<CoordinateDef> coordinates_;
+  std::vector<PositionConstraintDef> pos_;
+  std::vector<VelocityConstraintDef> vel_;
+  std::vector<ForceDef> forces_;
+  std::vector<TorqueDef> torques_;
+  std::vector<Instance> instances_;
+  Vec2 gravity_{0, 0};
+};
+
+}  // namespace mo2d

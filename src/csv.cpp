@@ -1,0 +1,62 @@
+// CSV writing (labels in the header, 17 significant digits, atomic replace).
+#include "mo2d/csv.hpp"
+
+#include <unistd.h>
+
+#include <cerrno>
+#include <cstdio>
+#include <cstring>
+#include <fstream>
+#include <sstream>
+
+#include "mo2d/error.hpp"
+
+namespace mo2d {
+
+void write_file_atomically(const std::string& path, const std::string& content) {
+  const std::string tmp = path + ".tmp." + std::to_string(::getpid());
+  {
+    std::ofstream out(tmp, std::ios::binary | std::ios::trunc);
+    if (!out) throw Error("cannot write '" + tmp + "': " + std::strerror(errno), path);
+    out << content;
+    out.flush();
+    if (!out) {
+      std::remove(tmp.c_str());
+      throw Error("error while writing '" + tmp + "'", path);
+    }
+  }
+  if (std::rename(tmp.c_str(), path.c_str()) != 0) {
+    const std::string why = std::strerror(errno);
+    std::remove(tmp.c_str());
+    throw Error("cannot rename '" + tmp + "' to '" + path + "': " + why, path);
+  }
+}
+
+std::string inverse_csv(const InverseResult& r) {
+  std::ostringstream s;
+  s.precision(17);
+  s << "t";
+  for (const auto& l : r.coordinate_labels) s << "," << l;
+  for (const auto& l : r.rate_labels) s << "," << l;
+  for (const auto& l : r.rate_labels) s << "," << l << ".dot";
+  for (const auto& l : r.input_labels) s << "," << l;
+  for (const auto& l : r.reaction_labels) s << "," << l;
+  s << ",residual.position,residual.velocity,residual.acceleration\n";
+  for (int k = 0; k < r.time.size(); ++k) {
+    s << r.time[k];
+    for (int j = 0; j < r.q0.cols(); ++j) s << "," << r.q0(k, j);
+    for (int j = 0; j < r.q1.cols(); ++j) s << "," << r.q1(k, j);
+    for (int j = 0; j < r.a1.cols(); ++j) s << "," << r.a1(k, j);
+    for (int j = 0; j < r.efforts.cols(); ++j) s << "," << r.efforts(k, j);
+    for (int j = 0; j < r.reactions.cols(); ++j) s << "," << r.reactions(k, j);
+    for (int j = 0; j < 3; ++j) s << "," << r.residuals(k, j);
+    s << "\n";
+  }
+  return s.str();
+}
+
+void write_inverse_csv(const InverseResult& r, const std::string& path) {
+  write_file_atomically(path, inverse_csv(r));
+}
+
+}  // namespace mo2d

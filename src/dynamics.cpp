@@ -1,0 +1,110 @@
+// Constant mass matrix and applied forces of the nodal 2D rigid body element.
+#include "mo2d/dynamics.hpp"
+
+#include "constraints.hpp"
+
+namespace mo2d {
+namespace {
+
+// Generalized force of a force F applied at the point (ci, cj, gamma, rho): J^T F.
+inline void add_point_force(const Body& b, int ci, int cj, double gamma, double rho,
+                            const Vec2& F, double* local) {
+  if (cj < 0) {
+    local[2 * ci] += F.x();
+    local[2 * ci + 1] += F.y();
+    return;
+  }
+  // J_i^T F, J_j^T F
+  local[2 * ci] += (1 - gamma) * F.x() - rho * F.y();
+  local[2 * ci + 1] += rho * F.x() + (1 - gamma) * F.y();
+  local[2 * cj] += gamma * F.x() + rho * F.y();
+  local[2 * cj + 1] += -rho * F.x() + gamma * F.y();
+  (void)b;
+}
+
+inline Vec2 local_velocity_of_point(const Body& b, const Eigen::Ref<const VectorXd>& x, int ci,
+                                    int cj, double gamma, double rho) {
+  const Vec2 vi = node_velocity(b.nodes[ci], x);
+  if (cj < 0) return vi;
+  const Vec2 vj = node_velocity(b.nodes[cj], x);
+  return {(1 - gamma) * vi.x() + rho * vi.y() + gamma * vj.x() - rho * vj.y(),
+          -rho * vi.x() + (1 - gamma) * vi.y() + rho * vj.x() + gamma * vj.y()};
+}
+
+}  // namespace
+
+void body_inertia(const Model& m, const Eigen::Ref<const VectorXd>& a1,
+                  Eigen::Ref<VectorXd> local) {
+  local.setZero();
+  int off = 0;
+  for (const Body& b : m.bodies) {
+    double* l = local.data() + off;
+    // m J^T (J a): the centre-of-mass acceleration times the mass, distributed by J^T
+    const Vec2 acom = local_velocity_of_point(b, a1, b.ci, b.cj, b.gamma, b.rho);
+    add_point_force(b, b.ci, b.cj, b.gamma, b.rho, b.mass * acom, l);
+    if (b.has_omega) l[b.slots() - 1] = b.inertia * omega_value(b.omega, a1);
+    off += b.slots();
+  }
+}
+
+void body_applied(const Model& m, const Eigen::Ref<const VectorXd>& q0, double t,
+                  Eigen::Ref<VectorXd> local) {
+  (void)q0;
+  local.setZero();
+  for (const Body& b : m.bodies)
+    add_point_force(b, b.ci, b.cj, b.gamma, b.rho, b.mass * m.gravity, local.data() + b.offset);
+  for (const auto& f : m.forces) {
+    const Body& b = m.bodies[f.body];
+    const Vec2 F(f.fx ? f.fx(t) : 0.0, f.fy ? f.fy(t) : 0.0);
+    add_point_force(b, f.ci, f.cj, f.gamma, f.rho, F, local.data() + b.offset);
+  }
+  for (const auto& tq : m.torques) {
+    const Body& b = m.bodies[tq.body];
+    local[b.offset + b.slots() - 1] += tq.torque ? tq.torque(t) : 0.0;
+  }
+}
+
+void scatter_local(const Model& m, const Eigen::Ref<const VectorXd>& local,
+                   Eigen::Ref<VectorXd> out) {
+  for (const Body& b : m.bodies) {
+    const double* l = local.data() + b.offset;
+    for (const NodeRef& n : b.nodes) {
+      if (n.var < 0) continue;
+      out[n.var] += l[2 * n.local];
+      out[n.var + 1] += l[2 * n.local + 1];
+    }
+    if (b.omega.var >= 0) out[b.omega.var] += l[b.slots() - 1];
+  }
+}
+
+MatrixXd mass_matrix(const Model& m) {
+  MatrixXd M = MatrixXd::Zero(m.n1, m.n1);
+  VectorXd e = VectorXd::Zero(m.n1), local(m.n_slots), col(m.n1);
+  for (int k = 0; k < m.n1; ++k) {
+    e.setZero();
+    e[k] = 1;
+    body_inertia(m, e, local);
+    col.setZero();
+    scatter_local(m, local, col);
+    M.col(k) = col;
+  }
+  return M;
+}
+
+void applied_forces(const Model& m, const Eigen::Ref<const VectorXd>& q0, double t,
+                    Eigen::Ref<VectorXd> f) {
+  VectorXd local(m.n_slots);
+  body_applied(m, q0, t, local);
+  f.setZero();
+  scatter_local(m, local, f);
+}
+
+MatrixXd input_matrix(const Model& m) {
+  MatrixXd B = MatrixXd::Zero(m.n1, m.n_inputs());
+  for (int k = 0; k < m.n_inputs(); ++k)
+    for (const auto& [ref, c] : m.inputs[k].terms)
+      if (ref.var >= 0) B(ref.var, k) += c;
+  return B;
+}
+
+}  // namespace mo2d

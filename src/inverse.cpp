@@ -1,0 +1,424 @@
+// Inverse dynamics per sample: positions (Newton), velocities, accelerations, efforts (null space
+// C = K^-1 [0; I], Theorem 4.3), multipliers and joint reactions.
+#include "mo2d/inverse.hpp"
+
+#include <Eigen/QR>
+#include <Eigen/SVD>
+#include <algorithm>
+#include <cmath>
+#include <ctime>
+#include <sstream>
+
+#include "constraints.hpp"
+#include "cpu_time.hpp"
+#include "mo2d/dynamics.hpp"
+#include "mo2d/error.hpp"
+#include "mo2d/kinematics.hpp"
+
+namespace mo2d {
+
+namespace {
+
+struct RecordSink {  // writes A into K's top rows and records the entries owned by body slots
+  Eigen::Ref<MatrixXd> A;
+  const Model& m;
+  std::vector<InverseData::Entry>& entries;
+  void add(int row, const VarRef& ref, double v) {
+    if (ref.var >= 0) A(row, ref.var) += v;
+    if (ref.body >= 0 && ref.slot >= 0)
+      entries.push_back({row, m.bodies[ref.body].offset + ref.slot, v});
+  }
+};
+
+double pivot_ratio(const Eigen::PartialPivLU<MatrixXd>& lu) {
+  if (lu.matrixLU().rows() == 0) return 1.0;
+  const auto d = lu.matrixLU().diagonal().cwiseAbs();
+  const double mx = d.maxCoeff();
+  return mx > 0 ? d.minCoeff() / mx : 0.0;
+}
+
+std::string fmt(double v) {
+  std::ostringstream s;
+  s.precision(6);
+  s << v;
+  return s.str();
+}
+
+// Labels of the variables that dominate the null space of J (columns given by labels).
+std::string null_variables(const MatrixXd& J, const std::vector<std::string>& labels) {
+  Eigen::JacobiSVD<MatrixXd> svd(J, Eigen::ComputeFullV);
+  const Eigen::VectorXd v = svd.matrixV().col(J.cols() - 1);
+  std::vector<int> idx(v.size());
+  for (int k = 0; k < v.size(); ++k) idx[k] = k;
+  std::sort(idx.begin(), idx.end(), [&](int a, int b) { return std::abs(v[a]) > std::abs(v[b]); });
+  std::string s;
+  for (int k = 0; k < std::min<int>(3, v.size()); ++k)
+    if (std::abs(v[idx[k]]) > 1e-3) s += (s.empty() ? "" : ", ") + labels[idx[k]];
+  return s;
+}
+
+std::string prescribed_values(const InverseData& d) {
+  std::string s;
+  for (size_t k = 0; k < d.p_labels.size(); ++k)
+    s += (k ? ", " : "") + d.p_labels[k] + " = " + fmt(d.s[k]);
+  return s;
+}
+
+}  // namespace
+
+InverseData::InverseData(const Model& m, std::span<const Prescribed> prescribed,
+                         const InverseOptions& o)
+    : options(o) {
+  if (!m.holonomic)
+    throw Error("inverse dynamics needs a holonomic model: '" + m.name +
+                    "' has velocity-level constraints without a position-level invariant",
+                m.name);
+  if (static_cast<int>(prescribed.size()) != m.dof) {
+    std::string list;
+    for (const auto& p : prescribed) list += (list.empty() ? "" : ", ") + p.coordinate;
+    throw Error("the mechanism has " + std::to_string(m.dof) + " degree(s) of freedom but " +
+                    std::to_string(prescribed.size()) + " coordinate(s) are prescribed" +
+                    (list.empty() ? "" : " (" + list + ")"),
+                m.name);
+  }
+  if (m.n_inputs() != m.dof)
+    throw Error("inverse dynamics needs one actuator per degree of freedom: the mechanism has " +
+                    std::to_string(m.dof) + " DOF and " + std::to_string(m.n_inputs()) +
+                    " actuated input(s)",
+                m.name);
+  if (m.n0 - m.m0 != m.dof)
+    throw Error("position-level DOF (" + std::to_string(m.n0 - m.m0) +
+                    ") differs from velocity-level DOF (" + std::to_string(m.dof) +
+                    "): some rotation is not determined by positions",
+                m.name);
+  if (!(o.samples >= 1) || !std::isfinite(o.t0) || !std::isfinite(o.t1) || o.t1 < o.t0)
+    throw Error("inverse dynamics: need samples >= 1 and finite t0 <= t1", "options");
+  colmap.assign(m.n0, 0);
+  for (const auto& p : prescribed) {
+    const int k = m.coordinate(p.coordinate);
+    if (!p.motion) throw Error("prescribed coordinate '" + p.coordinate + "' has no motion", p.coordinate);
+    if (colmap[k] < 0)
+      throw Error("coordinate '" + p.coordinate + "' is prescribed twice", p.coordinate);
+    colmap[k] = -1;
+    p_index.push_back(k);
+    p_motion.push_back(p.motion);
+    p_labels.push_back(p.coordinate);
+  }
+  int nfree = 0;
+  for (int& c : colmap) c = c < 0 ? -1 : nfree++;
+  const int dof = m.dof, nu = m.n_inputs();
+  q0 = m.q0;
+  q1 = VectorXd::Zero(m.n1);
+  a1 = VectorXd::Zero(m.n1);
+  u = VectorXd::Zero(nu);
+  lambda = VectorXd::Zero(m.m1);
+  reactions = VectorXd::Zero(m.n_reactions());
+  s = s_dot = s_ddot = VectorXd::Zero(dof);
+  psi = trial = VectorXd::Zero(m.m0);
+  q0_trial = VectorXd::Zero(m.n0);
+  b = c = VectorXd::Zero(m.m1);
+  rhs = w = f = z = VectorXd::Zero(m.n1);
+  local = local_a = VectorXd::Zero(m.n_slots);
+  J = MatrixXd::Zero(m.m0, nfree);
+  K = MatrixXd::Zero(m.n1, m.n1);
+  B = input_matrix(m);
+  Y = MatrixXd::Zero(m.n1, nu);
+  CtB = MatrixXd::Zero(dof, nu);
+  lu_pos = Eigen::PartialPivLU<MatrixXd>(nfree);
+  lu_K = Eigen::PartialPivLU<MatrixXd>(m.n1);
+  lu_u = Eigen::PartialPivLU<MatrixXd>(dof);
+  int total = 0;
+  for (const auto& e : m.merge_edges) {
+    edge_offset.push_back(total);
+    total += e.rotation ? 1 : 2;
+  }
+  edge_force.assign(total, 0.0);
+  // size the entry list with a dry run (the pattern is fixed)
+  MatrixXd A(m.m1, m.n1);
+  VectorXd bb(m.m1);
+  A.setZero();
+  RecordSink sink{A, m, entries};
+  for (const auto& k : m.constraints) detail::velocity_rows(m, k, m.q0, o.t0, bb, sink);
+  entries.reserve(entries.size() * 2 + 16);
+  entries.clear();
+  q0_prev = q1_prev = a1_prev = VectorXd::Zero(0);
+  q0_prev = VectorXd::Zero(m.n0);
+  q1_prev = VectorXd::Zero(m.n1);
+  a1_prev = VectorXd::Zero(m.n1);
+}
+
+namespace {
+
+void evaluate_positions(const Model& m, InverseData& d, const VectorXd& q, double t, VectorXd& psi,
+                        MatrixXd& J) {
+  J.setZero();
+  detail::DenseSink sink{J, d.colmap.data()};
+  for (const auto& c : m.constraints)
+    if (c.nrow0 > 0) detail::position_rows(m, c, q, t, psi, sink);
+}
+
+[[noreturn]] void throw_singular_positions(const Model& m, InverseData& d, double t, bool first) {
+  std::vector<std::string> free_labels;
+  for (int k = 0; k < m.n0; ++k)
+    if (d.colmap[k] >= 0) free_labels.push_back(m.coordinate_labels[k]);
+  const std::string vars = null_variables(d.J, free_labels);
+  if (first)
+    throw Error("the prescribed coordinates (" + prescribed_values(d) +
+                    ") are not independent inputs: with them fixed the position constraints do "
+                    "not determine " + vars,
+                d.p_labels.empty() ? "" : d.p_labels[0], t);
+  throw Error("singular configuration at t = " + fmt(t) + " s (" + prescribed_values(d) +
+                  "): the position constraints do not determine " + vars,
+              vars, t);
+}
+
+}  // namespace
+
+void inverse_dynamics_sample(const Model& m, InverseData& d, double t) {
+  const InverseOptions& o = d.options;
+  d.t = t;
+  const int dof = m.dof;
+  // prescribed motion, exact derivatives
+  for (int k = 0; k < dof; ++k) {
+    const Jet s = d.p_motion[k](Jet(t, 1, 0));
+    if (!std::isfinite(s.v) || !std::isfinite(s.d) || !std::isfinite(s.dd))
+      throw Error("prescribed motion of '" + d.p_labels[k] + "' is not finite at t = " + fmt(t),
+                  d.p_labels[k], t);
+    d.s[k] = s.v;
+    d.s_dot[k] = s.d;
+    d.s_ddot[k] = s.dd;
+  }
+  // ---- positions: Newton with backtracking, from a second-order prediction
+  if (d.has_previous) {
+    const double h = t - d.t_prev;
+    d.q0 = d.q0_prev + h * d.q1_prev.head(m.n0) + (0.5 * h * h) * d.a1_prev.head(m.n0);
+  }
+  for (int k = 0; k < dof; ++k) d.q0[d.p_index[k]] = d.s[k];
+  const double tol = o.position_tolerance * m.scale;
+  evaluate_positions(m, d, d.q0, t, d.psi, d.J);
+  double err = m.m0 ? d.psi.lpNorm<Eigen::Infinity>() : 0.0;
+  int it = 0;
+  while (err > tol) {
+    if (++it > o.max_newton_iterations || !std::isfinite(err))
+      throw Error("positions not found at t = " + fmt(t) + " s (" + prescribed_values(d) +
+                      "): Newton did not converge, residual " + fmt(err) +
+                      " (the prescribed motion leaves the workspace?)",
+                  d.p_labels.empty() ? "" : d.p_labels[0], t);
+    d.lu_pos.compute(d.J);
+    if (pivot_ratio(d.lu_pos) < o.singular_pivot_ratio) throw_singular_positions(m, d, t, !d.has_previous);
+    d.trial = d.lu_pos.solve(d.psi);  // Newton step (free coordinates)
+    double alpha = 1;
+    for (;;) {
+      d.q0_trial = d.q0;
+      for (int k = 0; k < m.n0; ++k)
+        if (d.colmap[k] >= 0) d.q0_trial[k] -= alpha * d.trial[d.colmap[k]];
+      evaluate_positions(m, d, d.q0_trial, t, d.psi, d.J);
+      const double e2 = d.psi.lpNorm<Eigen::Infinity>();
+      if (e2 < err || alpha < 1e-3) {
+        d.q0.swap(d.q0_trial);
+        err = e2;
+        break;
+      }
+      alpha *= 0.5;
+    }
+  }
+  d.newton_iterations = it;
+  d.residual_position = err;
+
+  // ---- velocities and accelerations: K = [A; E]
+  d.K.setZero();
+  d.entries.clear();
+  RecordSink sink{d.K.topRows(m.m1), m, d.entries};
+  for (const auto& c : m.constraints) detail::velocity_rows(m, c, d.q0, t, d.b, sink);
+  for (int k = 0; k < dof; ++k) d.K(m.m1 + k, d.p_index[k]) = 1.0;
+  d.lu_K.compute(d.K);
+  d.pivot_ratio = pivot_ratio(d.lu_K);
+  if (d.pivot_ratio < o.singular_pivot_ratio) {
+    const std::string vars = null_variables(d.K, m.rate_labels);
+    if (!d.has_previous)
+      throw Error("the prescribed coordinates (" + prescribed_values(d) +
+                      ") are not independent inputs: the velocity constraints with them "
+                      "prescribed are singular (undetermined: " + vars + ")",
+                  d.p_labels.empty() ? "" : d.p_labels[0], t);
+    throw Error("singular configuration at t = " + fmt(t) + " s (" + prescribed_values(d) +
+                    "): the constraint Jacobian with the prescribed coordinates loses rank "
+                    "(undetermined: " + vars + ")",
+                vars, t);
+  }
+  d.rhs.head(m.m1) = d.b;
+  d.rhs.tail(dof) = d.s_dot;
+  d.q1 = d.lu_K.solve(d.rhs);
+  acceleration_rhs(m, d.q0, d.q1, t, d.c);
+  d.rhs.head(m.m1) = d.c;
+  d.rhs.tail(dof) = d.s_ddot;
+  d.a1 = d.lu_K.solve(d.rhs);
+  const auto A = d.K.topRows(m.m1);
+  d.residual_velocity = m.m1 ? (A * d.q1 - d.b).lpNorm<Eigen::Infinity>() : 0.0;
+  d.residual_acceleration = m.m1 ? (A * d.a1 - d.c).lpNorm<Eigen::Infinity>() : 0.0;
+
+  // ---- efforts: C^T (M a1 - f - B u) = 0, C = K^-1 [0; I]  (Theorem 4.3, eq. 2.29)
+  body_inertia(m, d.a1, d.local_a);
+  body_applied(m, d.q0, t, d.local);
+  d.local_a -= d.local;  // M a - f, body-local
+  d.w.setZero();
+  scatter_local(m, d.local_a, d.w);
+  d.z = d.lu_K.transpose().solve(d.w);
+  d.Y = d.lu_K.transpose().solve(d.B);
+  if (o.complement == ComplementMethod::recursive) {
+    d.S = recursive_complement(m, A);
+    const MatrixXd StB = d.S.transpose() * d.B;
+    d.lu_u.compute(StB);
+    if (pivot_ratio(d.lu_u) < o.singular_pivot_ratio)
+      throw Error("the actuators cannot produce the prescribed motion at t = " + fmt(t) + " s",
+                  m.inputs.empty() ? "" : m.inputs[0].label, t);
+    d.u = d.lu_u.solve(d.S.transpose() * d.w);
+  } else {
+    d.CtB = d.Y.bottomRows(dof);
+    d.lu_u.compute(d.CtB);
+    if (pivot_ratio(d.lu_u) < o.singular_pivot_ratio)
+      throw Error("the actuators cannot produce the prescribed motion at t = " + fmt(t) + " s (" +
+                      prescribed_values(d) +
+                      "): the inputs do not act on the prescribed coordinates (C^T B is singular)",
+                  m.inputs.empty() ? "" : m.inputs[0].label, t);
+    d.u = d.lu_u.solve(d.z.tail(dof));
+  }
+  // multipliers: K^T [lambda; mu] = B u - (M a - f), mu = 0
+  d.lambda = d.Y.topRows(m.m1) * d.u - d.z.head(m.m1);
+
+  // ---- reactions: direct from multipliers, or split at eliminated joints
+  for (int k = 0; k < m.n_reactions(); ++k)
+    if (m.reactions[k].row >= 0) d.reactions[k] = m.reactions[k].factor * d.lambda[m.reactions[k].row];
+  if (!m.merge_edges.empty()) {
+    // h = f + B u - M a - A^T lambda, per body slot
+    d.local_a *= -1.0;
+    for (int k = 0; k < m.n_inputs(); ++k)
+      for (const auto& [ref, coef] : m.inputs[k].terms)
+        if (ref.body >= 0) d.local_a[m.bodies[ref.body].offset + ref.slot] += coef * d.u[k];
+    for (const auto& e : d.entries) d.local_a[e.slot] -= e.value * d.lambda[e.row];
+    for (size_t k = 0; k < m.merge_edges.size(); ++k) {
+      const MergeEdge& e = m.merge_edges[k];
+      const int n = e.rotation ? 1 : 2;
+      const int base = m.bodies[e.child_body].offset + e.child_slot;
+      double* F = d.edge_force.data() + d.edge_offset[k];
+      for (int i = 0; i < n; ++i) {
+        F[i] = -d.local_a[base + i];
+        for (int ce : e.child_edges) F[i] += d.edge_force[d.edge_offset[ce] + i];
+        d.reactions[e.reaction + i] = e.sign * F[i];
+      }
+    }
+  }
+  d.q0_prev = d.q0;
+  d.q1_prev = d.q1;
+  d.a1_prev = d.a1;
+  d.t_prev = t;
+  d.has_previous = true;
+}
+
+InverseResult inverse_dynamics(const Model& m, std::span<const Prescribed> prescribed,
+                               const InverseOptions& options) {
+  InverseData d(m, prescribed, options);
+  const int N = options.samples;
+  InverseResult r;
+  r.coordinate_labels = m.coordinate_labels;
+  r.rate_labels = m.rate_labels;
+  for (const auto& in : m.inputs) r.input_labels.push_back(in.label);
+  for (const auto& re : m.reactions) r.reaction_labels.push_back(re.label);
+  r.time.resize(N);
+  r.q0.resize(N, m.n0);
+  r.q1.resize(N, m.n1);
+  r.a1.resize(N, m.n1);
+  r.efforts.resize(N, m.n_inputs());
+  r.reactions.resize(N, m.n_reactions());
+  r.residuals.resize(N, 3);
+  const double start = detail::cpu_seconds();
+  for (int k = 0; k < N; ++k) {
+    const double t = N == 1 ? options.t0 : options.t0 + (options.t1 - options.t0) * k / (N - 1);
+    inverse_dynamics_sample(m, d, t);
+    r.time[k] = t;
+    r.q0.row(k) = d.q0.transpose();
+    r.q1.row(k) = d.q1.transpose();
+    r.a1.row(k) = d.a1.transpose();
+    r.efforts.row(k) = d.u.transpose();
+    r.reactions.row(k) = d.reactions.transpose();
+    r.residuals.row(k) << d.residual_position, d.residual_velocity, d.residual_acceleration;
+  }
+  r.cpu_seconds = detail::cpu_seconds() - start;
+  return r;
+}
+
+namespace {
+int find_label(const std::vector<std::string>& labels, const std::string& l, const char* what) {
+  auto it = std::find(labels.begin(), labels.end(), l);
+  if (it == labels.end()) throw Error(std::string("unknown ") + what + " '" + l + "'", l);
+  return static_cast<int>(it - labels.begin());
+}
+}  // namespace
+
+int InverseResult::column(const std::string& l) const {
+  return find_label(coordinate_labels, l, "coordinate");
+}
+int InverseResult::input(const std::string& l) const { return find_label(input_labels, l, "input"); }
+int InverseResult::reaction(const std::string& l) const {
+  return find_label(reaction_labels, l, "reaction");
+}
+
+// ---- recursive orthogonal complement (Theorem 2.10) ---------------------------------------------
+namespace {
+
+MatrixXd null_space(const MatrixXd& Bm) {
+  const int n = static_cast<int>(Bm.cols());
+  if (Bm.rows() == 0) return MatrixXd::Identity(n, n);
+  Eigen::ColPivHouseholderQR<MatrixXd> qr(Bm.transpose());
+  qr.setThreshold(1e-10);
+  const int r = static_cast<int>(qr.rank());
+  const MatrixXd Q = qr.householderQ();
+  return Q.rightCols(n - r);
+}
+
+MatrixXd complement_of(const Model& m, const Eigen::Ref<const MatrixXd>& A, int node,
+                       std::vector<int>& vars) {
+  const TreeNode& tn = m.tree[node];
+  vars = tn.vars;
+  std::vector<MatrixXd> S_children;
+  std::vector<std::vector<int>> child_vars;
+  for (int ch : tn.children) {
+    std::vector<int> cv;
+    S_children.push_back(complement_of(m, A, ch, cv));
+    child_vars.push_back(std::move(cv));
+  }
+  int cols = static_cast<int>(tn.vars.size());
+  for (const auto& S : S_children) cols += static_cast<int>(S.cols());
+  for (const auto& cv : child_vars) vars.insert(vars.end(), cv.begin(), cv.end());
+  const int n = static_cast<int>(vars.size());
+  MatrixXd R = MatrixXd::Zero(n, cols);  // R = blockdiag(I, S_children)  (2.34)
+  const int own = static_cast<int>(tn.vars.size());
+  R.topLeftCorner(own, own).setIdentity();
+  int r0 = own, c0 = own;
+  for (const auto& S : S_children) {
+    R.block(r0, c0, S.rows(), S.cols()) = S;
+    r0 += static_cast<int>(S.rows());
+    c0 += static_cast<int>(S.cols());
+  }
+  MatrixXd Aown(tn.rows.size(), n);  // external constraints of this node
+  for (size_t i = 0; i < tn.rows.size(); ++i)
+    for (int j = 0; j < n; ++j) Aown(i, j) = A(tn.rows[i], vars[j]);
+  const MatrixXd C = null_space(Aown * R);  // B = A_ext R, C = null(B)
+  return R * C;                             // S = R C  (2.35)
+}
+
+}  // namespace
+
+MatrixXd recursive_complement(const Model& m, const Eigen::Ref<const MatrixXd>& A) {
+  if (m.reduction == Reduction::flat && m.tree.size() > 1)
+    throw Error("the recursive complement needs a model built with Reduction::subsystems or none",
+                m.name);
+  std::vector<int> vars;
+  const MatrixXd S = complement_of(m, A, 0, vars);
+  if (static_cast<int>(vars.size()) != m.n1)
+    throw Error("internal: subsystem tree does not cover all variables", m.name);
+  MatrixXd out(m.n1, S.cols());
+  for (int k = 0; k < m.n1; ++k) out.row(vars[k]) = S.row(k);
+  return out;
+}
+
+}  // namespace mo2d

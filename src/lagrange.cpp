@@ -1,0 +1,70 @@
+// Inverse dynamics with Lagrange multipliers on the unreduced model (validation formulation).
+#include "mo2d/lagrange.hpp"
+
+#include <Eigen/LU>
+
+#include "cpu_time.hpp"
+#include "mo2d/dynamics.hpp"
+#include "mo2d/error.hpp"
+#include "mo2d/kinematics.hpp"
+
+namespace mo2d {
+
+InverseResult inverse_dynamics_lagrange(const Model& m, std::span<const Prescribed> prescribed,
+                                        const InverseOptions& options) {
+  if (m.reduction != Reduction::none)
+    throw Error("inverse_dynamics_lagrange needs a model built with Reduction::none", m.name);
+  // kinematics (positions, velocities) from the same per-sample solver; dynamics solved here
+  InverseData d(m, prescribed, options);
+  const MatrixXd M = mass_matrix(m);
+  const MatrixXd B = input_matrix(m);
+  const int n1 = m.n1, m1 = m.m1, nu = m.n_inputs(), dof = m.dof;
+  const int N = n1 + m1 + dof;
+  MatrixXd L = MatrixXd::Zero(N, n1 + m1 + nu);
+  VectorXd rhs(N), f(n1), c(m1), bb(m1);
+  MatrixXd A(m1, n1);
+  InverseResult r;
+  r.coordinate_labels = m.coordinate_labels;
+  r.rate_labels = m.rate_labels;
+  for (const auto& in : m.inputs) r.input_labels.push_back(in.label);
+  for (const auto& re : m.reactions) r.reaction_labels.push_back(re.label);
+  const int S = options.samples;
+  r.time.resize(S);
+  r.q0.resize(S, m.n0);
+  r.q1.resize(S, n1);
+  r.a1.resize(S, n1);
+  r.efforts.resize(S, nu);
+  r.reactions.resize(S, m.n_reactions());
+  r.residuals.resize(S, 3);
+  const double start = detail::cpu_seconds();
+  for (int k = 0; k < S; ++k) {
+    const double t = S == 1 ? options.t0 : options.t0 + (options.t1 - options.t0) * k / (S - 1);
+    inverse_dynamics_sample(m, d, t);  // positions and velocities (its dynamics are not used)
+    velocity_jacobian(m, d.q0, t, A, bb);
+    acceleration_rhs(m, d.q0, d.q1, t, c);
+    applied_forces(m, d.q0, t, f);
+    L.setZero();
+    L.topLeftCorner(n1, n1) = M;
+    L.block(0, n1, n1, m1) = A.transpose();
+    L.block(0, n1 + m1, n1, nu) = -B;
+    L.block(n1, 0, m1, n1) = A;
+    for (int i = 0; i < dof; ++i) L(n1 + m1 + i, d.p_index[i]) = 1.0;
+    rhs << f, c, d.s_ddot;
+    Eigen::PartialPivLU<MatrixXd> lu(L);
+    const VectorXd x = lu.solve(rhs);
+    const VectorXd lambda = x.segment(n1, m1);
+    r.time[k] = t;
+    r.q0.row(k) = d.q0.transpose();
+    r.q1.row(k) = d.q1.transpose();
+    r.a1.row(k) = x.head(n1).transpose();
+    r.efforts.row(k) = x.tail(nu).transpose();
+    for (int j = 0; j < m.n_reactions(); ++j)
+      r.reactions(k, j) = m.reactions[j].factor * lambda[m.reactions[j].row];
+    r.residuals.row(k) << d.residual_position, (A * d.q1 - bb).lpNorm<Eigen::Infinity>(),
+        (A * x.head(n1) - c).lpNorm<Eigen::Infinity>();
+  }
+  r.cpu_seconds = detail::cpu_seconds() - start;
+  return r;
+}
+
+}  // namespace mo2d

@@ -1,0 +1,62 @@
+// System: collecting definitions. Validation happens in build_model, where names can be resolved.
+#include "mo2d/system.hpp"
+
+#include <cmath>
+
+namespace mo2d {
+
+Vec2 Placement::apply(const Vec2& p) const {
+  const double c = std::cos(angle), s = std::sin(angle);
+  return {c * p.x() - s * p.y() + offset.x(), s * p.x() + c * p.y() + offset.y()};
+}
+
+System& System::add_ground_node(std::string name, Vec2 position) {
+  ground_.push_back({std::move(name), position});
+  return *this;
+}
+System& System::add_body(BodyDef body) {
+  bodies_.push_back(std::move(body));
+  return *this;
+}
+System& System::add_revolute(RevoluteDef joint) {
+  revolutes_.push_back(std::move(joint));
+  return *this;
+}
+System& System::add_prismatic(PrismaticDef joint) {
+  prismatics_.push_back(std::move(joint));
+  return *this;
+}
+System& System::add_pin_in_slot(PinInSlotDef joint) {
+  slots_.push_back(std::move(joint));
+  return *this;
+}
+System& System::add_coordinate(CoordinateDef coordinate) {
+  coordinates_.push_back(std::move(coordinate));
+  return *this;
+}
+System& System::add_constraint(PositionConstraintDef constraint) {
+  pos_.push_back(std::move(constraint));
+  return *this;
+}
+System& System::add_constraint(VelocityConstraintDef constraint) {
+  vel_.push_back(std::move(constraint));
+  return *this;
+}
+System& System::add_force(ForceDef force) {
+  forces_.push_back(std::move(force));
+  return *this;
+}
+System& System::add_torque(TorqueDef torque) {
+  torques_.push_back(std::move(torque));
+  return *this;
+}
+System& System::add_instance(std::string name, const System& sub, Placement placement) {
+  instances_.push_back({std::move(name), std::make_shared<const System>(sub), placement});
+  return *this;
+}
+System& System::set_gravity(Vec2 g) {
+  gravity_ = g;
+  return *this;
+}
+
+}  // namespace mo2d
