@@ -1,0 +1,31 @@
+#!/usr/bin/env bash
+# Install the Debian 12 packages mo2d needs, but only those that are missing.
+# Idempotent and silent when everything is already installed.
+set -euo pipefail
+
+packages=(
+  build-essential cmake g++  # toolchain (GCC 12, CMake 3.25)
+  libeigen3-dev              # Eigen 3.4: dense linear algebra of the core library
+  libgtest-dev               # GoogleTest: tests/
+  libbenchmark-dev           # Google Benchmark: bench/
+  libsundials-dev            # SUNDIALS 6.4: upcoming forward dynamics (IDA/CVODE)
+  libbox2d-dev               # Box2D 2.4.1: upcoming cross-check simulations
+  libcairo2-dev              # Cairo 1.16: upcoming rendering
+)
+
+missing=()
+for p in "${packages[@]}"; do
+  status=$(dpkg-query -W -f='${db:Status-Status}' "$p" 2>/dev/null || true)
+  [[ "$status" == installed ]] || missing+=("$p")
+done
+[[ ${#missing[@]} -eq 0 ]] && exit 0
+
+echo "install-deps: installing ${missing[*]}"
+sudo=()
+if [[ $(id -u) -ne 0 ]]; then
+  command -v sudo >/dev/null || { echo "install-deps: not root and no sudo" >&2; exit 1; }
+  sudo=(sudo)
+fi
+export DEBIAN_FRONTEND=noninteractive
+"${sudo[@]}" apt-get update -qq
+"${sudo[@]}" env DEBIAN_FRONTEND=noninteractive apt-get install -y -qq --no-install-recommends "${missing[@]}"

@@ -1,0 +1,25 @@
+#!/usr/bin/env bash
+# First run of mo2d: install the dependencies, build Release in build/, run the demo.
+#   ./scripts/quickstart.sh
+set -euo pipefail
+cd "$(dirname "${BASH_SOURCE[0]}")/.."
+jobs=$(nproc 2>/dev/null || echo 2)
+start=$SECONDS
+
+echo "== dependencies"
+./scripts/install-deps.sh
+
+echo "== configure (preset 'release', build/)"
+cmake --preset release
+
+echo "== build (${jobs} jobs)"
+cmake --build --preset release -j "${jobs}"
+
+echo "== demo: build/mo2d demo"
+./build/mo2d demo
+
+echo
+echo "Done in $((SECONDS - start)) s."
+echo "  inverse dynamics of the Whitworth mechanism: $(pwd)/out/whitworth_inverse.csv"
+echo "  command-line tool:                           $(pwd)/build/mo2d --help"
+echo "  next: ./scripts/test.sh (Release + ASan/UBSan test suites)"
