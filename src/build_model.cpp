@@ -125,8 +125,9 @@ void flatten(const System& s, const std::string& prefix, const Frame& frame, int
   }
   for (const auto& t : s.torques()) out.torques.push_back({t, tree_index, prefix});
   if (tree_index != 0 && s.gravity() != Vec2(0, 0))
-    throw Error("subsystem '" + prefix + "' sets gravity: gravity belongs to the root system",
-                prefix);
+    throw Error("subsystem '" + prefix.substr(0, prefix.size() - 1) +
+                    "' sets gravity: gravity belongs to the root system",
+                prefix.substr(0, prefix.size() - 1));
   std::set<std::string> seen;
   for (const auto& inst : s.instances()) {
     check_name(inst.name, "instance");
@@ -174,6 +175,8 @@ bool is_integer(double w) { return std::abs(w - std::round(w)) < 1e-12; }
 
 int Model::coordinate(const std::string& label) const {
   auto it = coordinate_index.find(label);
+  if (it == coordinate_index.end() && fixed_coordinates.count(label))
+    throw Error("coordinate '" + label + "' is fixed (its node is joined to the ground)", label);
   if (it == coordinate_index.end()) {
     std::vector<std::string> names;
     for (const auto& [k, v] : coordinate_index) names.push_back(k);
@@ -366,6 +369,42 @@ Model build_model(const System& system, const BuildOptions& options) {
     return false;
   };
 
+  // ---- one namespace for joints, coordinates and constraints ---------------------------------------
+  {
+    std::set<std::string> names;
+    auto claim = [&](const std::string& full, const char* what) {
+      if (!names.insert(full).second)
+        throw Error(std::string(what) + " '" + full + "' is defined twice (joints, coordinates "
+                    "and constraints share one set of names)", full);
+    };
+    for (const auto& j : flat.revolutes) claim(j.prefix + j.def.name, "revolute joint");
+    for (const auto& j : flat.prismatics) claim(j.prefix + j.def.name, "prismatic joint");
+    for (const auto& j : flat.slots) claim(j.prefix + j.def.name, "pin-in-slot joint");
+    for (const auto& c : flat.coordinates) claim(c.prefix + c.def.name, "coordinate");
+    for (const auto& c : flat.pos) claim(c.prefix + c.def.name, "constraint");
+    for (const auto& c : flat.vel) claim(c.prefix + c.def.name, "constraint");
+  }
+
+  // ---- topology of all revolute joints, whatever the reduction: cycles at one node are redundant,
+  // two ground nodes joined through bodies conflict
+  {
+    UnionFind topo(E);
+    for (const auto& j : flat.revolutes) {
+      const std::string what = "revolute joint '" + j.prefix + j.def.name + "'";
+      const int ea = resolve(j.prefix, j.def.node_a, what);
+      const int eb = resolve(j.prefix, j.def.node_b, what);
+      const int ra = topo.find(ea), rb = topo.find(eb);
+      if (ra == rb && ea != eb)
+        throw Error(what + " is redundant: its nodes are already joined by other revolute joints",
+                    j.prefix + j.def.name);
+      if (element_body[ra] < 0 && element_body[rb] < 0 && ra != rb)
+        throw Error(what + " connects two ground nodes ('" + element_label[ra] + "' and '" +
+                        element_label[rb] + "'): conflicting constraints",
+                    j.prefix + j.def.name);
+      if (element_body[rb] < 0) topo.parent[ra] = rb; else topo.parent[rb] = ra;
+    }
+  }
+
   // ---- revolute joints: node merges --------------------------------------------------------------
   UnionFind nodes_uf(E);
   std::vector<std::array<int, 2>> revolute_elements;
@@ -506,6 +545,7 @@ Model build_model(const System& system, const BuildOptions& options) {
       b.nodes.push_back(n);
     }
   }
+  m.fixed_coordinates.insert(fixed_labels.begin(), fixed_labels.end());
   auto node_ref = [&](int e) {
     if (element_body[e] >= 0) return m.bodies[element_body[e]].nodes[element_local[e]];
     NodeRef n;
@@ -967,8 +1007,12 @@ Model build_model(const System& system, const BuildOptions& options) {
       m.holonomic = false;
   m.dof = m.n1 - m.m1;
   if (options.assemble) {
-    m.q0 = assemble(m, q0, 0.0, {}, options.assembly_tolerance);
-    check_constraint_ranks(m, m.q0, 0.0);
+    try {
+      m.q0 = assemble(m, q0, 0.0, {}, options.assembly_tolerance);
+      check_constraint_ranks(m, m.q0, 0.0);
+    } catch (const Error& e) {  // a build-time error: no run time
+      throw Error(e.what(), e.element());
+    }
   }
   return m;
 }

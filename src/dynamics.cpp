@@ -1,7 +1,10 @@
 // Constant mass matrix and applied forces of the nodal 2D rigid body element.
 #include "mo2d/dynamics.hpp"
 
+#include <string>
+
 #include "constraints.hpp"
+#include "mo2d/error.hpp"
 
 namespace mo2d {
 namespace {
@@ -56,11 +59,18 @@ void body_applied(const Model& m, const Eigen::Ref<const VectorXd>& q0, double t
   for (const auto& f : m.forces) {
     const Body& b = m.bodies[f.body];
     const Vec2 F(f.fx ? f.fx(t) : 0.0, f.fy ? f.fy(t) : 0.0);
+    if (!F.allFinite())
+      throw Error("force '" + f.name + "' is not finite at t = " + std::to_string(t) + " s", f.name,
+                  t);
     add_point_force(b, f.ci, f.cj, f.gamma, f.rho, F, local.data() + b.offset);
   }
   for (const auto& tq : m.torques) {
     const Body& b = m.bodies[tq.body];
-    local[b.offset + b.slots() - 1] += tq.torque ? tq.torque(t) : 0.0;
+    const double tau = tq.torque ? tq.torque(t) : 0.0;
+    if (!std::isfinite(tau))
+      throw Error("torque '" + tq.name + "' is not finite at t = " + std::to_string(t) + " s",
+                  tq.name, t);
+    local[b.offset + b.slots() - 1] += tau;
   }
 }
 

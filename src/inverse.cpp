@@ -57,6 +57,16 @@ std::string null_variables(const MatrixXd& J, const std::vector<std::string>& la
   return s;
 }
 
+// Throws if a constraint row evaluated to a non-finite value (a user function, a load).
+void check_finite_rows(const VectorXd& r, const std::vector<std::string>& labels, const char* level,
+                       double t) {
+  for (int k = 0; k < r.size(); ++k)
+    if (!std::isfinite(r[k]))
+      throw Error(std::string(level) + " constraint '" + labels[k] + "' is not finite at t = " +
+                      fmt(t) + " s",
+                  labels[k], t);
+}
+
 std::string prescribed_values(const InverseData& d) {
   std::string s;
   for (size_t k = 0; k < d.p_labels.size(); ++k)
@@ -76,16 +86,19 @@ InverseData::InverseData(const Model& m, std::span<const Prescribed> prescribed,
   if (static_cast<int>(prescribed.size()) != m.dof) {
     std::string list;
     for (const auto& p : prescribed) list += (list.empty() ? "" : ", ") + p.coordinate;
-    throw Error("the mechanism has " + std::to_string(m.dof) + " degree(s) of freedom but " +
+    throw Error("'" + m.name + "' has " + std::to_string(m.dof) + " degree(s) of freedom but " +
                     std::to_string(prescribed.size()) + " coordinate(s) are prescribed" +
                     (list.empty() ? "" : " (" + list + ")"),
                 m.name);
   }
-  if (m.n_inputs() != m.dof)
-    throw Error("inverse dynamics needs one actuator per degree of freedom: the mechanism has " +
+  if (m.n_inputs() != m.dof) {
+    std::string list;
+    for (const auto& in : m.inputs) list += (list.empty() ? "" : ", ") + in.label;
+    throw Error("inverse dynamics needs one actuator per degree of freedom: '" + m.name + "' has " +
                     std::to_string(m.dof) + " DOF and " + std::to_string(m.n_inputs()) +
-                    " actuated input(s)",
+                    " actuated input(s)" + (list.empty() ? "" : " (" + list + ")"),
                 m.name);
+  }
   if (m.n0 - m.m0 != m.dof)
     throw Error("position-level DOF (" + std::to_string(m.n0 - m.m0) +
                     ") differs from velocity-level DOF (" + std::to_string(m.dof) +
@@ -169,7 +182,7 @@ void evaluate_positions(const Model& m, InverseData& d, const VectorXd& q, doubl
                 d.p_labels.empty() ? "" : d.p_labels[0], t);
   throw Error("singular configuration at t = " + fmt(t) + " s (" + prescribed_values(d) +
                   "): the position constraints do not determine " + vars,
-              vars, t);
+              vars.substr(0, vars.find(',')), t);
 }
 
 }  // namespace
@@ -196,6 +209,7 @@ void inverse_dynamics_sample(const Model& m, InverseData& d, double t) {
   for (int k = 0; k < dof; ++k) d.q0[d.p_index[k]] = d.s[k];
   const double tol = o.position_tolerance * m.scale;
   evaluate_positions(m, d, d.q0, t, d.psi, d.J);
+  check_finite_rows(d.psi, m.position_row_labels, "position", t);
   double err = m.m0 ? d.psi.lpNorm<Eigen::Infinity>() : 0.0;
   int it = 0;
   while (err > tol) {
@@ -213,6 +227,7 @@ void inverse_dynamics_sample(const Model& m, InverseData& d, double t) {
       for (int k = 0; k < m.n0; ++k)
         if (d.colmap[k] >= 0) d.q0_trial[k] -= alpha * d.trial[d.colmap[k]];
       evaluate_positions(m, d, d.q0_trial, t, d.psi, d.J);
+      check_finite_rows(d.psi, m.position_row_labels, "position", t);
       const double e2 = d.psi.lpNorm<Eigen::Infinity>();
       if (e2 < err || alpha < 1e-3) {
         d.q0.swap(d.q0_trial);
@@ -231,6 +246,9 @@ void inverse_dynamics_sample(const Model& m, InverseData& d, double t) {
   RecordSink sink{d.K.topRows(m.m1), m, d.entries};
   for (const auto& c : m.constraints) detail::velocity_rows(m, c, d.q0, t, d.b, sink);
   for (int k = 0; k < dof; ++k) d.K(m.m1 + k, d.p_index[k]) = 1.0;
+  check_finite_rows(d.b, m.velocity_row_labels, "velocity", t);
+  if (!d.K.allFinite())
+    throw Error("the velocity constraint Jacobian is not finite at t = " + fmt(t) + " s", m.name, t);
   d.lu_K.compute(d.K);
   d.pivot_ratio = pivot_ratio(d.lu_K);
   if (d.pivot_ratio < o.singular_pivot_ratio) {
@@ -243,12 +261,13 @@ void inverse_dynamics_sample(const Model& m, InverseData& d, double t) {
     throw Error("singular configuration at t = " + fmt(t) + " s (" + prescribed_values(d) +
                     "): the constraint Jacobian with the prescribed coordinates loses rank "
                     "(undetermined: " + vars + ")",
-                vars, t);
+                vars.substr(0, vars.find(',')), t);
   }
   d.rhs.head(m.m1) = d.b;
   d.rhs.tail(dof) = d.s_dot;
   d.q1 = d.lu_K.solve(d.rhs);
   acceleration_rhs(m, d.q0, d.q1, t, d.c);
+  check_finite_rows(d.c, m.velocity_row_labels, "acceleration", t);
   d.rhs.head(m.m1) = d.c;
   d.rhs.tail(dof) = d.s_ddot;
   d.a1 = d.lu_K.solve(d.rhs);

@@ -3,6 +3,7 @@
 
 #include <Eigen/QR>
 #include <Eigen/SVD>
+#include <cmath>
 #include <sstream>
 
 #include "constraints.hpp"
@@ -43,10 +44,18 @@ void acceleration_rhs(const Model& m, const Eigen::Ref<const VectorXd>& q0,
 
 namespace {
 
+// Row with the largest |residual|, or the first non-finite one.
+int worst_index(const VectorXd& r) {
+  for (int k = 0; k < r.size(); ++k)
+    if (!std::isfinite(r[k])) return k;
+  Eigen::Index k = 0;
+  if (r.size()) r.cwiseAbs().maxCoeff(&k);
+  return static_cast<int>(k);
+}
+
 std::string worst_row(const std::vector<std::string>& labels, const VectorXd& r) {
   if (r.size() == 0) return "";
-  Eigen::Index k;
-  r.cwiseAbs().maxCoeff(&k);
+  const int k = worst_index(r);
   std::ostringstream s;
   s << "'" << labels[k] << "' (residual " << r[k] << ")";
   return s.str();
@@ -72,7 +81,7 @@ VectorXd assemble(const Model& m, const VectorXd& q0_guess, double t, std::span<
       if (c.nrow0 > 0) detail::position_rows(m, c, q, t, psi, sink);
     if (!psi.allFinite())
       throw Error("assembly: non-finite constraint residual " + worst_row(m.position_row_labels, psi),
-                  "", t);
+                  m.position_row_labels[worst_index(psi)], t);
     const double norm = psi.norm();
     if (psi.lpNorm<Eigen::Infinity>() <= tol) return q;
     Eigen::CompleteOrthogonalDecomposition<MatrixXd> cod(J);
@@ -93,7 +102,7 @@ VectorXd assemble(const Model& m, const VectorXd& q0_guess, double t, std::span<
   throw Error("the mechanism cannot be assembled: Newton stalled with the largest residual in " +
                   worst_row(m.position_row_labels, psi) +
                   " (conflicting constraints or unreachable geometry)",
-              m.position_row_labels.empty() ? "" : m.position_row_labels[0], t);
+              m.position_row_labels[worst_index(psi)], t);
 }
 
 namespace {

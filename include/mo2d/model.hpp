@@ -13,6 +13,7 @@
 #include <span>
 #include <string>
 #include <unordered_map>
+#include <unordered_set>
 #include <vector>
 
 #include "mo2d/jet.hpp"
@@ -158,6 +159,7 @@ struct Model {
   std::vector<std::string> rate_labels;        // n1
   std::vector<std::string> position_row_labels, velocity_row_labels;
   std::unordered_map<std::string, int> coordinate_index, rate_index;  // includes aliases
+  std::unordered_set<std::string> fixed_coordinates;  // node coordinates joined to the ground
   std::vector<VarRef> rate_refs;  // n1: first body/slot owning each quasi-velocity
 
   std::vector<Body> bodies;
