@@ -155,7 +155,8 @@ InverseData::InverseData(const Model& m, std::span<const Prescribed> prescribed,
   entries.reserve(entries.size() * 2 + 16);
   entries.clear();
   q0_prev = q1_prev = a1_prev = VectorXd::Zero(0);
-  q0_prev = VectorXd::Zero(m.n0);
+  q0_prev = q0_good = VectorXd::Zero(m.n0);
+  s_good = VectorXd::Zero(dof);
   q1_prev = VectorXd::Zero(m.n1);
   a1_prev = VectorXd::Zero(m.n1);
 }
@@ -185,11 +186,62 @@ void evaluate_positions(const Model& m, InverseData& d, const VectorXd& q, doubl
               vars.substr(0, vars.find(',')), t);
 }
 
+enum class NewtonStatus { converged, singular, diverged };
+
+// Newton on psi(q0) = 0 over the free coordinates from d.q0, with backtracking. Writes
+// d.residual_position and d.newton_iterations; leaves d.J evaluated at the last iterate.
+NewtonStatus newton(const Model& m, InverseData& d, double t) {
+  const InverseOptions& o = d.options;
+  const double tol = o.position_tolerance * m.scale;
+  evaluate_positions(m, d, d.q0, t, d.psi, d.J);
+  check_finite_rows(d.psi, m.position_row_labels, "position", t);
+  double err = m.m0 ? d.psi.lpNorm<Eigen::Infinity>() : 0.0;
+  int it = 0;
+  NewtonStatus status = NewtonStatus::converged;
+  while (err > tol) {
+    if (++it > o.max_newton_iterations) {
+      status = NewtonStatus::diverged;
+      break;
+    }
+    d.lu_pos.compute(d.J);
+    if (pivot_ratio(d.lu_pos) < o.singular_pivot_ratio) {
+      status = NewtonStatus::singular;
+      break;
+    }
+    d.trial = d.lu_pos.solve(d.psi);  // Newton step on the free coordinates
+    double alpha = 1;
+    for (;;) {
+      d.q0_trial = d.q0;
+      for (int k = 0; k < m.n0; ++k)
+        if (d.colmap[k] >= 0) d.q0_trial[k] -= alpha * d.trial[d.colmap[k]];
+      evaluate_positions(m, d, d.q0_trial, t, d.psi, d.J);
+      check_finite_rows(d.psi, m.position_row_labels, "position", t);
+      const double e2 = d.psi.lpNorm<Eigen::Infinity>();
+      if (e2 < err) {
+        d.q0.swap(d.q0_trial);
+        err = e2;
+        break;
+      }
+      alpha *= 0.5;
+      if (alpha < 1e-4) {
+        status = NewtonStatus::diverged;
+        break;
+      }
+    }
+    if (status != NewtonStatus::converged) break;
+  }
+  if (status != NewtonStatus::converged) evaluate_positions(m, d, d.q0, t, d.psi, d.J);
+  d.newton_iterations = it;
+  d.residual_position = err;
+  return status;
+}
+
 }  // namespace
 
 void inverse_dynamics_sample(const Model& m, InverseData& d, double t) {
   const InverseOptions& o = d.options;
   d.t = t;
+  (void)o;
   const int dof = m.dof;
   // prescribed motion, exact derivatives
   for (int k = 0; k < dof; ++k) {
@@ -201,44 +253,41 @@ void inverse_dynamics_sample(const Model& m, InverseData& d, double t) {
     d.s_dot[k] = s.d;
     d.s_ddot[k] = s.dd;
   }
-  // ---- positions: Newton with backtracking, from a second-order prediction
+  // ---- positions: Newton from a second-order prediction; if that fails, continuation from the
+  // last solved configuration (the prescribed values move there in steps, halved on failure)
+  d.q0_good = d.q0;  // previous sample, or the model's initial configuration
+  for (int k = 0; k < dof; ++k) d.s_good[k] = d.q0_good[d.p_index[k]];
   if (d.has_previous) {
     const double h = t - d.t_prev;
     d.q0 = d.q0_prev + h * d.q1_prev.head(m.n0) + (0.5 * h * h) * d.a1_prev.head(m.n0);
   }
   for (int k = 0; k < dof; ++k) d.q0[d.p_index[k]] = d.s[k];
-  const double tol = o.position_tolerance * m.scale;
-  evaluate_positions(m, d, d.q0, t, d.psi, d.J);
-  check_finite_rows(d.psi, m.position_row_labels, "position", t);
-  double err = m.m0 ? d.psi.lpNorm<Eigen::Infinity>() : 0.0;
-  int it = 0;
-  while (err > tol) {
-    if (++it > o.max_newton_iterations || !std::isfinite(err))
+  NewtonStatus status = newton(m, d, t);
+  if (status != NewtonStatus::converged) {
+    double lambda = 0, step = 0.5;
+    while (lambda < 1 && step > 1e-6) {
+      const double trial = std::min(1.0, lambda + step);
+      d.q0_trial = d.q0_good;
+      for (int k = 0; k < dof; ++k)
+        d.q0_trial[d.p_index[k]] = d.s_good[k] + trial * (d.s[k] - d.s_good[k]);
+      d.q0.swap(d.q0_trial);
+      status = newton(m, d, t);
+      if (status == NewtonStatus::converged) {
+        lambda = trial;
+        d.q0_good = d.q0;
+        step = std::min(2 * step, 1.0);
+      } else {
+        step *= 0.5;
+      }
+    }
+    if (lambda < 1) {
+      if (status == NewtonStatus::singular) throw_singular_positions(m, d, t, !d.has_previous);
       throw Error("positions not found at t = " + fmt(t) + " s (" + prescribed_values(d) +
-                      "): Newton did not converge, residual " + fmt(err) +
+                      "): Newton did not converge, residual " + fmt(d.residual_position) +
                       " (the prescribed motion leaves the workspace?)",
                   d.p_labels.empty() ? "" : d.p_labels[0], t);
-    d.lu_pos.compute(d.J);
-    if (pivot_ratio(d.lu_pos) < o.singular_pivot_ratio) throw_singular_positions(m, d, t, !d.has_previous);
-    d.trial = d.lu_pos.solve(d.psi);  // Newton step (free coordinates)
-    double alpha = 1;
-    for (;;) {
-      d.q0_trial = d.q0;
-      for (int k = 0; k < m.n0; ++k)
-        if (d.colmap[k] >= 0) d.q0_trial[k] -= alpha * d.trial[d.colmap[k]];
-      evaluate_positions(m, d, d.q0_trial, t, d.psi, d.J);
-      check_finite_rows(d.psi, m.position_row_labels, "position", t);
-      const double e2 = d.psi.lpNorm<Eigen::Infinity>();
-      if (e2 < err || alpha < 1e-3) {
-        d.q0.swap(d.q0_trial);
-        err = e2;
-        break;
-      }
-      alpha *= 0.5;
     }
   }
-  d.newton_iterations = it;
-  d.residual_position = err;
 
   // ---- velocities and accelerations: K = [A; E]
   d.K.setZero();

@@ -222,3 +222,85 @@ TEST(Validation, RecursiveComplementSpansNullSpace) {
   Eigen::FullPivLU<MatrixXd> lu(S);
   EXPECT_EQ(lu.rank(), 3);
 }
+
+// Velocities and accelerations against 5-point central differences of the positions solved at
+// neighbouring instants, and the input power against the difference of the energy. The power
+// balance above uses the solver's own accelerations, so it cannot see a wrong acceleration term;
+// these can. Stencil h = 1e-3 s: for motions of angular frequency w and amplitude a the truncation
+// is about (w h)^4 w a / 30 for the first derivative (< 1e-9 at w = 4 pi rad/s, a = 0.1 m), and a
+// position error d (Newton, ~1e-14 m) enters the second derivative as 64 d / (12 h^2) (~1e-7).
+namespace {
+struct Stencil {
+  InverseResult r;
+  double h;
+  double d1(const Eigen::VectorXd& f) const {
+    return (-f[4] + 8 * f[3] - 8 * f[1] + f[0]) / (12 * h);
+  }
+  double d2(const Eigen::VectorXd& f) const {
+    return (-f[4] + 16 * f[3] - 30 * f[2] + 16 * f[1] - f[0]) / (12 * h * h);
+  }
+};
+
+void expect_kinematics_match_differences(const mechanisms::Example& ex,
+                                         const std::vector<Drive>& drives, int instants = 7) {
+  const Model m = build_model(ex.system);
+  const auto par = mo2d::test::params_of(ex.system);
+  const double h = 1e-3;
+  double worst_v = 0, worst_a = 0, worst_w = 0, worst_p = 0, vscale = 0, ascale = 0, pscale = 0;
+  for (int k = 1; k <= instants; ++k) {
+    const double t = ex.run.t0 + 2 * h + (ex.run.t1 - ex.run.t0 - 4 * h) * (k - 0.37) / instants;
+    InverseOptions o = ex.run;
+    o.t0 = t - 2 * h;
+    o.t1 = t + 2 * h;
+    o.samples = 5;
+    const Stencil s{inverse_dynamics(m, ex.motion, o), h};
+    for (int j = 0; j < m.n0; ++j) {
+      const Eigen::VectorXd q = s.r.q0.col(j);
+      worst_v = std::max(worst_v, std::abs(s.d1(q) - s.r.q1(2, j)));
+      worst_a = std::max(worst_a, std::abs(s.d2(q) - s.r.a1(2, j)));
+      vscale = std::max(vscale, std::abs(s.r.q1(2, j)));
+      ascale = std::max(ascale, std::abs(s.r.a1(2, j)));
+    }
+    for (size_t b = 0; b < m.bodies.size(); ++b) {  // rotation rate vs the angle of nodes 0-1
+      const Body& body = m.bodies[b];
+      if (body.nodes.size() < 2 || body.omega.var < 0) continue;
+      Eigen::VectorXd th(5);
+      for (int i = 0; i < 5; ++i) {
+        const auto n0 = mo2d::test::node_state(m, s.r, i, static_cast<int>(b), 0);
+        const auto n1 = mo2d::test::node_state(m, s.r, i, static_cast<int>(b), 1);
+        th[i] = std::atan2(n1.p.y() - n0.p.y(), n1.p.x() - n0.p.x());
+        if (i > 0) th[i] = th[i - 1] + std::remainder(th[i] - th[i - 1], 2 * std::numbers::pi);
+      }
+      worst_w = std::max(worst_w, std::abs(s.d1(th) - s.r.q1(2, body.omega.var)));
+      worst_w = std::max(worst_w, std::abs(s.d2(th) - s.r.a1(2, body.omega.var)) / 10);
+    }
+    Eigen::VectorXd e(5);
+    for (int i = 0; i < 5; ++i) e[i] = mo2d::test::energy(m, s.r, i);
+    double pin = 0;
+    for (const auto& d : drives)
+      pin += s.r.efforts(2, s.r.input(d.input)) * body_motion(m, s.r, 2, body_index(m, d.body)).w;
+    worst_p = std::max(worst_p, std::abs(s.d1(e) - pin));
+    pscale = std::max(pscale, std::abs(pin));
+    (void)par;
+  }
+  EXPECT_LE(worst_v, 1e-6 * std::max(1.0, vscale));
+  EXPECT_LE(worst_a, 1e-5 * std::max(1.0, ascale));
+  EXPECT_LE(worst_w, 1e-5);
+  EXPECT_LE(worst_p, 1e-5 * std::max(1.0, pscale));
+}
+}  // namespace
+
+TEST(Validation, WhitworthKinematicsMatchDifferences) {
+  expect_kinematics_match_differences(mechanisms::whitworth(), {{"crank_pivot.torque", "crank"}});
+}
+TEST(Validation, Rrr3KinematicsMatchDifferences) {
+  expect_kinematics_match_differences(mechanisms::rrr3(), {{"leg1.pivot.torque", "leg1.proximal"},
+                                                           {"leg2.pivot.torque", "leg2.proximal"},
+                                                           {"leg3.pivot.torque", "leg3.proximal"}});
+}
+TEST(Validation, SliderCrankKinematicsMatchDifferences) {
+  expect_kinematics_match_differences(mechanisms::slider_crank(), {{"crank_pivot.torque", "crank"}});
+}
+TEST(Validation, FourbarKinematicsMatchDifferences) {
+  expect_kinematics_match_differences(mechanisms::fourbar(), {{"crank_pivot.torque", "crank"}});
+}

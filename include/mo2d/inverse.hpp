@@ -75,6 +75,7 @@ struct InverseData {
   bool has_previous = false;
   double t_prev = 0;
   VectorXd q0_prev, q1_prev, a1_prev;
+  VectorXd q0_good, s_good;  // last solved configuration and its prescribed values
 };
 
 // Solve one sample at time t (no heap allocation). Throws Error (with the time) at a singular
