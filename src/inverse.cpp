@@ -135,10 +135,12 @@ InverseData::InverseData(const Model& m, std::span<const Prescribed> prescribed,
   J = MatrixXd::Zero(m.m0, nfree);
   K = MatrixXd::Zero(m.n1, m.n1);
   B = input_matrix(m);
-  Y = MatrixXd::Zero(m.n1, nu);
+  S = MatrixXd::Zero(m.n1, dof);
   CtB = MatrixXd::Zero(dof, nu);
-  lu_pos = Eigen::PartialPivLU<MatrixXd>(nfree);
-  lu_K = Eigen::PartialPivLU<MatrixXd>(m.n1);
+  Ctw = VectorXd::Zero(dof);
+  row_residual = VectorXd::Zero(m.m1);
+  lu_pos = detail::SmallLU(nfree);
+  lu_K = detail::SmallLU(m.n1);
   lu_u = Eigen::PartialPivLU<MatrixXd>(dof);
   int total = 0;
   for (const auto& e : m.merge_edges) {
@@ -203,12 +205,12 @@ NewtonStatus newton(const Model& m, InverseData& d, double t) {
       status = NewtonStatus::diverged;
       break;
     }
-    d.lu_pos.compute(d.J);
-    if (pivot_ratio(d.lu_pos) < o.singular_pivot_ratio) {
+    if (d.lu_pos.compute(d.J) < o.singular_pivot_ratio) {
       status = NewtonStatus::singular;
       break;
     }
-    d.trial = d.lu_pos.solve(d.psi);  // Newton step on the free coordinates
+    d.trial = d.psi;
+    d.lu_pos.solve_in_place(d.trial);  // Newton step on the free coordinates
     double alpha = 1;
     for (;;) {
       d.q0_trial = d.q0;
@@ -298,8 +300,7 @@ void inverse_dynamics_sample(const Model& m, InverseData& d, double t) {
   check_finite_rows(d.b, m.velocity_row_labels, "velocity", t);
   if (!d.K.allFinite())
     throw Error("the velocity constraint Jacobian is not finite at t = " + fmt(t) + " s", m.name, t);
-  d.lu_K.compute(d.K);
-  d.pivot_ratio = pivot_ratio(d.lu_K);
+  d.pivot_ratio = d.lu_K.compute(d.K);
   if (d.pivot_ratio < o.singular_pivot_ratio) {
     const std::string vars = null_variables(d.K, m.rate_labels);
     if (!d.has_previous)
@@ -314,15 +315,19 @@ void inverse_dynamics_sample(const Model& m, InverseData& d, double t) {
   }
   d.rhs.head(m.m1) = d.b;
   d.rhs.tail(dof) = d.s_dot;
-  d.q1 = d.lu_K.solve(d.rhs);
+  d.q1 = d.rhs;
+  d.lu_K.solve_in_place(d.q1);
   acceleration_rhs(m, d.q0, d.q1, t, d.c);
   check_finite_rows(d.c, m.velocity_row_labels, "acceleration", t);
   d.rhs.head(m.m1) = d.c;
   d.rhs.tail(dof) = d.s_ddot;
-  d.a1 = d.lu_K.solve(d.rhs);
+  d.a1 = d.rhs;
+  d.lu_K.solve_in_place(d.a1);
   const auto A = d.K.topRows(m.m1);
-  d.residual_velocity = m.m1 ? (A * d.q1 - d.b).lpNorm<Eigen::Infinity>() : 0.0;
-  d.residual_acceleration = m.m1 ? (A * d.a1 - d.c).lpNorm<Eigen::Infinity>() : 0.0;
+  d.row_residual.noalias() = A * d.q1;
+  d.residual_velocity = m.m1 ? (d.row_residual - d.b).lpNorm<Eigen::Infinity>() : 0.0;
+  d.row_residual.noalias() = A * d.a1;
+  d.residual_acceleration = m.m1 ? (d.row_residual - d.c).lpNorm<Eigen::Infinity>() : 0.0;
 
   // ---- efforts: C^T (M a1 - f - B u) = 0, C = K^-1 [0; I]  (Theorem 4.3, eq. 2.29)
   body_inertia(m, d.a1, d.local_a);
@@ -330,28 +335,30 @@ void inverse_dynamics_sample(const Model& m, InverseData& d, double t) {
   d.local_a -= d.local;  // M a - f, body-local
   d.w.setZero();
   scatter_local(m, d.local_a, d.w);
-  d.z = d.lu_K.transpose().solve(d.w);
-  d.Y = d.lu_K.transpose().solve(d.B);
-  if (o.complement == ComplementMethod::recursive) {
-    d.S = recursive_complement(m, A);
-    const MatrixXd StB = d.S.transpose() * d.B;
-    d.lu_u.compute(StB);
-    if (pivot_ratio(d.lu_u) < o.singular_pivot_ratio)
-      throw Error("the actuators cannot produce the prescribed motion at t = " + fmt(t) + " s",
-                  m.inputs.empty() ? "" : m.inputs[0].label, t);
-    d.u = d.lu_u.solve(d.S.transpose() * d.w);
-  } else {
-    d.CtB = d.Y.bottomRows(dof);
-    d.lu_u.compute(d.CtB);
-    if (pivot_ratio(d.lu_u) < o.singular_pivot_ratio)
-      throw Error("the actuators cannot produce the prescribed motion at t = " + fmt(t) + " s (" +
-                      prescribed_values(d) +
-                      "): the inputs do not act on the prescribed coordinates (C^T B is singular)",
-                  m.inputs.empty() ? "" : m.inputs[0].label, t);
-    d.u = d.lu_u.solve(d.z.tail(dof));
+  // C = K^-1 [0; I]: columns of K^-1 at the prescribed rows (eq. 2.29, independent variables =
+  // the prescribed coordinates); then C^T B u = C^T w gives the efforts.
+  for (int k = 0; k < dof; ++k) {
+    auto col = d.S.col(k);
+    col.setZero();
+    col[m.m1 + k] = 1.0;
+    d.lu_K.solve_in_place(col);
   }
-  // multipliers: K^T [lambda; mu] = B u - (M a - f), mu = 0
-  d.lambda = d.Y.topRows(m.m1) * d.u - d.z.head(m.m1);
+  if (o.complement == ComplementMethod::recursive) d.S = recursive_complement(m, A);
+  d.CtB.noalias() = d.S.transpose() * d.B;
+  d.lu_u.compute(d.CtB);
+  if (pivot_ratio(d.lu_u) < o.singular_pivot_ratio)
+    throw Error("the actuators cannot produce the prescribed motion at t = " + fmt(t) + " s (" +
+                    prescribed_values(d) +
+                    "): the inputs do not act on the prescribed coordinates (C^T B is singular)",
+                m.inputs.empty() ? "" : m.inputs[0].label, t);
+  d.Ctw.noalias() = d.S.transpose() * d.w;
+  d.u = d.lu_u.solve(d.Ctw);
+  // multipliers: K^T [lambda; mu] = B u - (M a - f), with mu = 0 for an exact solution
+  d.rhs.noalias() = d.B * d.u;
+  d.rhs -= d.w;
+  d.z = d.rhs;
+  d.lu_K.solve_transpose_in_place(d.z);
+  d.lambda = d.z.head(m.m1);
 
   // ---- reactions: direct from multipliers, or split at eliminated joints
   for (int k = 0; k < m.n_reactions(); ++k)

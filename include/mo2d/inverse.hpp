@@ -8,10 +8,12 @@
 #include <Eigen/Core>
 #include <Eigen/LU>
 #include <functional>
+#include <memory>
 #include <span>
 #include <string>
 #include <vector>
 
+#include "mo2d/detail/small_lu.hpp"
 #include "mo2d/jet.hpp"
 #include "mo2d/model.hpp"
 
@@ -62,9 +64,12 @@ struct InverseData {
 
   // workspace
   std::vector<int> colmap;  // coordinate -> free column (-1 prescribed)
-  VectorXd s, s_dot, s_ddot, psi, trial, q0_trial, b, c, rhs, w, f, local, local_a, z;
-  MatrixXd J, K, B, Y, CtB, S;
-  Eigen::PartialPivLU<MatrixXd> lu_pos, lu_K, lu_u;
+  VectorXd s, s_dot, s_ddot, psi, trial, q0_trial, b, c, rhs, w, f, local, local_a, z, Ctw;
+  VectorXd row_residual;
+  MatrixXd J, K, B, CtB;
+  MatrixXd S;  // orthogonal complement C (n1 x dof) used for the efforts of the last sample
+  detail::SmallLU lu_pos, lu_K;  // positions (free coordinates), K = [A; E]
+  Eigen::PartialPivLU<MatrixXd> lu_u;
   std::vector<double> edge_force;  // per merge edge: 2 (node) or 1 (rotation) values
   std::vector<int> edge_offset;
   struct Entry {
