@@ -1,0 +1,45 @@
+#!/usr/bin/env bash
+# Mutation check: apply deliberate bugs to a copy of the sources, rebuild, run the test suite and
+# list which tests catch each one. A mutation that no test catches is a hole in the suite.
+# Usage: scripts/mutation-check.sh [WORKDIR]   (default /tmp/mo2d-mutations)
+set -euo pipefail
+src=$(cd "$(dirname "$0")/.." && pwd)
+work=${1:-/tmp/mo2d-mutations}
+mkdir -p "$work"
+rm -rf "$work/src-copy" && mkdir -p "$work/src-copy"
+(cd "$src" && tar --exclude='./build*' --exclude=./out --exclude=./.git -cf - .) | tar -xf - -C "$work/src-copy"
+cd "$work/src-copy"
+cmake -S . -B "$work/build" -DCMAKE_BUILD_TYPE=Release -DMO2D_BUILD_BENCH=OFF >/dev/null
+cmake --build "$work/build" -j"$(nproc)" --target mo2d_tests >/dev/null
+
+# name | file | sed expression
+mutations=(
+  "actuator sign flipped|src/build_model.cpp|s/std::pair{b2, 1.0}, std::pair{b1, -1.0}/std::pair{b2, -1.0}, std::pair{b1, 1.0}/"
+  "centre of mass moved (gamma + 0.1)|src/build_model.cpp|s/b.gamma = com.gamma;/b.gamma = com.gamma + 0.1;/"
+  "centre of mass at the other node|src/build_model.cpp|s/b.ci = local(com.node_i);\$/b.ci = local(com.node_i); if (n >= 2) b.ci = n - 1 - b.ci;/"
+  "inertia +5 %|src/dynamics.cpp|s/l\[b.slots() - 1\] = b.inertia \*/l[b.slots() - 1] = 1.05 * b.inertia */"
+  "gravity sign flipped|src/dynamics.cpp|s/b.mass \* m.gravity/-b.mass * m.gravity/"
+  "rigid-body acceleration bias sign|src/constraints.hpp|s/const Vec2 e = w \* perp(node_velocity/const Vec2 e = -w * perp(node_velocity/"
+  "slider acceleration bias dropped|src/constraints.hpp|s/const Vec2 e = (2 \* q1\[c.q\]/const Vec2 e = (0 * q1[c.q]/"
+  "reaction split sign|src/inverse.cpp|s/F\[i\] = -d.local_a\[base + i\];/F[i] = d.local_a[base + i];/"
+)
+status=0
+for entry in "${mutations[@]}"; do
+  IFS='|' read -r name file expr <<<"$entry"
+  cp "$file" "$file.orig"
+  sed -i "$expr" "$file"
+  if cmp -s "$file" "$file.orig"; then
+    echo "MUTATION NOT APPLIED: $name ($file)"; status=1; mv "$file.orig" "$file"; continue
+  fi
+  if ! cmake --build "$work/build" -j"$(nproc)" --target mo2d_tests >/dev/null 2>&1; then
+    echo "[$name] does not compile"; mv "$file.orig" "$file"; continue
+  fi
+  failed=$( { "$work/build/tests/mo2d_tests" --gtest_brief=1 2>&1 || true; } | sed -n 's/^\[  FAILED  \] \([A-Za-z0-9_.]*\).*/\1/p' | sort -u | tr '\n' ' ')
+  if [ -z "$failed" ]; then
+    echo "[$name] NOT CAUGHT"; status=1
+  else
+    echo "[$name] caught by: $failed"
+  fi
+  mv "$file.orig" "$file"
+done
+exit $status
