@@ -79,10 +79,6 @@ std::string prescribed_values(const InverseData& d) {
 InverseData::InverseData(const Model& m, std::span<const Prescribed> prescribed,
                          const InverseOptions& o)
     : options(o) {
-  if (!m.holonomic)
-    throw Error("inverse dynamics needs a holonomic model: '" + m.name +
-                    "' has velocity-level constraints without a position-level invariant",
-                m.name);
   if (static_cast<int>(prescribed.size()) != m.dof) {
     std::string list;
     for (const auto& p : prescribed) list += (list.empty() ? "" : ", ") + p.coordinate;
@@ -100,9 +96,11 @@ InverseData::InverseData(const Model& m, std::span<const Prescribed> prescribed,
                 m.name);
   }
   if (m.n0 - m.m0 != m.dof)
-    throw Error("position-level DOF (" + std::to_string(m.n0 - m.m0) +
-                    ") differs from velocity-level DOF (" + std::to_string(m.dof) +
-                    "): some rotation is not determined by positions",
+    throw Error("inverse dynamics of '" + m.name + "' needs positions determined by the prescribed "
+                    "coordinates, but its position-level DOF (" + std::to_string(m.n0 - m.m0) +
+                    ") differs from its velocity-level DOF (" + std::to_string(m.dof) +
+                    "): a coordinate or constraint given only at velocity level (non-holonomic) "
+                    "leaves positions undetermined",
                 m.name);
   if (!(o.samples >= 1) || !std::isfinite(o.t0) || !std::isfinite(o.t1) || o.t1 < o.t0)
     throw Error("inverse dynamics: need samples >= 1 and finite t0 <= t1", "options");
