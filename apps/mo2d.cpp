@@ -91,5 +91,8 @@ int main(int argc, char** argv) {
   } catch (const mo2d::Error& e) {
     std::cerr << "mo2d: " << e.what() << "\n";
     return 1;
+  } catch (const std::exception& e) {  // file system and other library errors
+    std::cerr << "mo2d: " << e.what() << "\n";
+    return 1;
   }
 }
