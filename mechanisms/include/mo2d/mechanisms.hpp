@@ -42,4 +42,8 @@ struct PendulumParams {
 };
 Example pendulum(const PendulumParams& p = {});
 
+// IFToMM double four-bar (forward-dynamics benchmark): five 1 m, 1 kg bars; start with the crank
+// rate "crank0.w" = -1 rad/s. Passive (no inputs).
+System double_fourbar();
+
 }  // namespace mo2d::mechanisms

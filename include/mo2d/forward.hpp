@@ -1,0 +1,109 @@
+#pragma once
+// Forward dynamics: integrate the motion of a Model under loads and input efforts.
+//
+// The state is (q0, q1). The accelerations a1 = d/dt q1 solve, at each evaluation,
+//   M a1 = f + B u - A^T lambda,   A a1 = c        (index-1 form of eq. 4.1 with multipliers)
+// in one of three formulations:
+//  - augmented Lagrangian (default): (M + alpha A^T A) a = f + B u - A^T lambda* + alpha A^T c,
+//    lambda* += alpha (A a - c), a few iterations; the matrix stays positive definite when A
+//    loses rank, so the run goes through singular configurations;
+//  - Lagrange: the square system [M A^T; A 0] (fails where A loses rank);
+//  - null space: C^T M a = C^T (f + B u), A a = c with C = K^-1 [0; I], K = [A; E] and E the
+//    independent quasi-velocities chosen by pivoting (re-chosen when K gets ill-conditioned).
+// After each step the state is projected back on psi(q0) = 0 and A q1 = b (minimum-norm
+// Gauss-Newton, regularized), so constraint drift stays at the solver tolerance.
+#include <Eigen/Core>
+#include <functional>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "mo2d/inverse.hpp"
+#include "mo2d/model.hpp"
+
+namespace mo2d {
+
+using Eigen::MatrixXd;
+using Eigen::VectorXd;
+
+enum class Integrator {
+  cvode_bdf,    // SUNDIALS CVODE, BDF (orders 1-5), Newton + dense LU, projection each step
+  cvode_adams,  // SUNDIALS CVODE, Adams-Moulton (orders 1-12), fixed-point iteration, no projection
+  rk4,          // classical Runge-Kutta, fixed step, projection each step
+  baumgarte,    // Mo2DPack-compatible: RK4, velocity constraints stabilized by Baumgarte, no projection
+};
+enum class Formulation { augmented_lagrangian, lagrange, null_space };
+
+const char* to_string(Integrator i);
+const char* to_string(Formulation f);
+
+// A consistent state (positions on psi = 0, velocities on A q1 = b).
+struct State {
+  double t = 0;
+  VectorXd q0, q1;
+};
+
+// Initial state from the model's (approximate) configuration: coordinates listed in `positions`
+// are held at the given values while the others are assembled (Newton, nearest branch); the
+// quasi-velocities listed in `velocities` are imposed and the others solved from A q1 = b.
+// Exactly dof velocities must be given and they must be independent. Throws Error otherwise.
+struct InitialConditions {
+  std::vector<std::pair<std::string, double>> positions;   // coordinate label -> value
+  std::vector<std::pair<std::string, double>> velocities;  // quasi-velocity label -> value
+};
+State consistent_state(const Model& m, const InitialConditions& ic, double t0 = 0);
+
+struct ForwardOptions {
+  double t0 = 0, t1 = 1;
+  int samples = 101;  // output times, equally spaced in [t0, t1] (dense output)
+  Integrator integrator = Integrator::cvode_bdf;
+  Formulation formulation = Formulation::augmented_lagrangian;
+  double rtol = 1e-8, atol = 1e-10;  // CVODE tolerances (atol in SI units of each variable)
+  double step = 1e-3;                // fixed step (rk4, baumgarte)
+  double baumgarte_alpha = 20.0;     // 1/s, velocity-constraint feedback of the baumgarte mode
+  double penalty = 0;                // augmented Lagrangian alpha (0: chosen from the mass scale)
+  int max_steps = 10'000'000;
+  // Input efforts, one per Model::inputs entry (missing or empty = zero).
+  std::vector<std::function<double(double t)>> efforts{};
+  // Stop early when this function of the state changes sign (root finding between steps).
+  std::function<double(double t, const VectorXd& q0, const VectorXd& q1)> stop_when{};
+  double singular_warning = 1e-8;  // warn when min/max pivot of the constraint Jacobian drops below
+};
+
+struct ForwardStats {
+  long steps = 0, rhs_evaluations = 0, factorizations = 0, projections = 0, error_test_failures = 0;
+  long solver_iterations = 0;  // augmented Lagrangian iterations, summed over evaluations
+  double cpu_seconds = 0;
+  bool stopped_by_event = false;
+  double t_end = 0;
+  double min_pivot_ratio = 1;  // smallest conditioning indicator of A seen at output times
+  std::vector<std::string> warnings;
+};
+
+struct ForwardResult {
+  std::vector<std::string> coordinate_labels, rate_labels;
+  VectorXd time;
+  MatrixXd q0, q1, a1;         // samples x n0 / n1 / n1
+  VectorXd kinetic, potential;  // energies (J); potential of gravity, datum y = 0
+  VectorXd input_work;          // integral of the input power from t0 (J)
+  MatrixXd residuals;           // samples x 2: |psi|_inf, |A q1 - b|_inf
+  ForwardStats stats;
+  int column(const std::string& coordinate_label) const;
+  int rate_column(const std::string& rate_label) const;
+};
+
+ForwardResult forward_dynamics(const Model& m, const State& initial, const ForwardOptions& options);
+
+// Efforts replayed from inverse dynamics, one function per input: `exact` solves the inverse
+// problem at the requested instant (no interpolation error); `from_samples` interpolates a sampled
+// result with cubic Hermite splines (slopes from centred differences), so its accuracy depends on
+// the sampling.
+std::vector<std::function<double(double)>> efforts_from_inverse(
+    const Model& m, std::vector<Prescribed> prescribed, const InverseOptions& options = {});
+std::vector<std::function<double(double)>> efforts_from_samples(const InverseResult& r);
+
+// Kinetic energy 1/2 q1^T M q1 and potential energy of gravity of a state.
+double kinetic_energy(const Model& m, const VectorXd& q1);
+double potential_energy(const Model& m, const VectorXd& q0);
+
+}  // namespace mo2d

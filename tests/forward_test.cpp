@@ -1,0 +1,233 @@
+// Forward dynamics against closed forms, conservation laws, inverse dynamics, and the IFToMM
+// double four-bar reference; the error of each integrator falls at its expected rate.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <numbers>
+
+#include "mo2d/forward.hpp"
+#include "mo2d/mechanisms.hpp"
+#include "mo2d/mo2d.hpp"
+
+using namespace mo2d;
+
+namespace {
+
+// Complete elliptic integral of the first kind by the arithmetic-geometric mean.
+double elliptic_K(double k) {
+  double a = 1, b = std::sqrt(1 - k * k);
+  for (int i = 0; i < 40; ++i) {
+    const double an = 0.5 * (a + b);
+    b = std::sqrt(a * b);
+    a = an;
+  }
+  return std::numbers::pi / (2 * a);
+}
+
+struct Pendulum {
+  Model model;
+  State start;
+  double quarter_period;
+};
+
+// Point mass on a massless link released at rest `amplitude` from the bottom.
+Pendulum released_pendulum(double amplitude, double L = 1.0, double g = 9.81) {
+  auto ex = mechanisms::pendulum({.L = L, .m = 1.0, .g = g,
+                                  .theta0 = -std::numbers::pi / 2 - amplitude});
+  Model m = build_model(ex.system);
+  State s = consistent_state(m, {.positions = {}, .velocities = {{"link.w", 0.0}}});
+  return {std::move(m), s, std::sqrt(L / g) * elliptic_K(std::sin(amplitude / 2))};
+}
+
+// Time of the first passage at the bottom (tip x = 0), by the integrator's root finding.
+double bottom_passage(const Pendulum& p, ForwardOptions o) {
+  const int ix = p.model.coordinate("link.P.x");
+  o.t1 = 2 * p.quarter_period;
+  o.samples = 3;
+  o.stop_when = [ix](double, const VectorXd& q0, const VectorXd&) { return q0[ix]; };
+  const ForwardResult r = forward_dynamics(p.model, p.start, o);
+  EXPECT_TRUE(r.stats.stopped_by_event);
+  return r.stats.t_end;
+}
+
+}  // namespace
+
+// The period 4 sqrt(L/g) K(sin(theta0/2)) at large amplitudes, to 1e-9 relative.
+TEST(Forward, PendulumPeriodAtLargeAmplitudes) {
+  for (double amplitude : {0.5, 2.0, 3.0}) {
+    const Pendulum p = released_pendulum(amplitude);
+    ForwardOptions bdf{.integrator = Integrator::cvode_bdf, .rtol = 1e-12, .atol = 1e-12};
+    ForwardOptions adams{.integrator = Integrator::cvode_adams, .rtol = 1e-12, .atol = 1e-12};
+    ForwardOptions rk4{.integrator = Integrator::rk4, .step = 1e-3};
+    for (const auto& o : {bdf, adams, rk4}) {
+      const double t = bottom_passage(p, o);
+      EXPECT_LE(std::abs(t - p.quarter_period) / p.quarter_period, 1e-9)
+          << to_string(o.integrator) << " amplitude " << amplitude;
+    }
+  }
+}
+
+// RK4 is fourth order: halving the step divides the error by ~16.
+TEST(Forward, Rk4ConvergesAtFourthOrder) {
+  const Pendulum p = released_pendulum(2.0);
+  auto err = [&](double h) {
+    return std::abs(bottom_passage(p, {.integrator = Integrator::rk4, .step = h}) - p.quarter_period);
+  };
+  const double e1 = err(0.04), e2 = err(0.02), e3 = err(0.01);
+  EXPECT_GT(e1 / e2, 11.0);
+  EXPECT_LT(e1 / e2, 22.0);
+  EXPECT_GT(e2 / e3, 11.0);
+  EXPECT_LT(e2 / e3, 22.0);
+}
+
+// CVODE's error falls as its tolerance is tightened (BDF and Adams): the tip of the pendulum must
+// be at the bottom (x = 0) exactly at the quarter period.
+TEST(Forward, CvodeErrorFallsWithTolerance) {
+  const Pendulum p = released_pendulum(2.0);
+  const int ix = p.model.coordinate("link.P.x");
+  for (auto integ : {Integrator::cvode_bdf, Integrator::cvode_adams}) {
+    double previous = INFINITY;
+    for (double tol : {1e-5, 1e-7, 1e-9, 1e-11}) {
+      const ForwardResult r = forward_dynamics(
+          p.model, p.start,
+          {.t0 = 0, .t1 = p.quarter_period, .samples = 2, .integrator = integ, .rtol = tol, .atol = tol});
+      const double e = std::abs(r.q0(1, ix));
+      EXPECT_LT(e, 0.5 * previous) << to_string(integ) << " tol " << tol;
+      EXPECT_LT(e, 1000 * tol) << to_string(integ) << " tol " << tol;
+      previous = e;
+    }
+  }
+}
+
+// A conservative double pendulum in nodal form (two uniform bars) and the crank-rocker four-bar
+// under gravity, passive: energy is conserved and the constraints stay at round-off.
+TEST(Forward, EnergyIsConserved) {
+  System dp("double_pendulum");
+  dp.add_ground_node("O", {0, 0});
+  dp.add_body({.name = "upper", .nodes = {{"O", {0, 0}}, {"A", {0.3, 0}}}, .mass = 1,
+               .inertia = 0.09 / 12, .com = CenterOfMass::between("O", "A", 0.5)});
+  dp.add_body({.name = "lower", .nodes = {{"A", {0.3, 0}}, {"B", {0.6, 0}}}, .mass = 1,
+               .inertia = 0.09 / 12, .com = CenterOfMass::between("A", "B", 0.5)});
+  dp.add_revolute({.name = "shoulder", .node_a = "ground.O", .node_b = "upper.O"});
+  dp.add_revolute({.name = "elbow", .node_a = "upper.A", .node_b = "lower.A"});
+  dp.set_gravity({0, -9.81});
+  const Model m = build_model(dp);
+  const State s = consistent_state(m, {.positions = {}, .velocities = {{"upper.w", 0.0}, {"lower.w", 0.0}}});
+  // RK4 with projection, h = 5e-4 s, 20 s (~18 swings of ~1.1 s)
+  const ForwardResult r = forward_dynamics(
+      m, s, {.t0 = 0, .t1 = 20, .samples = 201, .integrator = Integrator::rk4, .step = 5e-4});
+  const VectorXd E = r.kinetic + r.potential;
+  EXPECT_LE((E.array() - E[0]).abs().maxCoeff() / r.kinetic.maxCoeff(), 1e-8);
+  EXPECT_LE(r.residuals.maxCoeff(), 1e-10);
+
+  const Model fb = build_model(mechanisms::fourbar().system);
+  const State s2 = consistent_state(fb, {.positions = {}, .velocities = {{"crank.w", 6.0}}});
+  const ForwardResult r2 = forward_dynamics(
+      fb, s2, {.t0 = 0, .t1 = 20, .samples = 201, .integrator = Integrator::rk4, .step = 5e-4});
+  const VectorXd E2 = r2.kinetic + r2.potential;
+  EXPECT_LE((E2.array() - E2[0]).abs().maxCoeff() / r2.kinetic.maxCoeff(), 1e-8);
+  EXPECT_LE(r2.residuals.maxCoeff(), 1e-10);
+}
+
+// Round trip: the Whitworth crank torque from inverse dynamics, replayed forward from the same
+// initial state, reproduces the prescribed crank angle pi t / 2 over 16 s.
+TEST(Forward, WhitworthInverseForwardRoundTrip) {
+  auto ex = mechanisms::whitworth();
+  const Model m = build_model(ex.system);
+  InverseOptions io = ex.run;
+  io.samples = 2;
+  const InverseResult inv = inverse_dynamics(m, ex.motion, io);
+  State s{0, inv.q0.row(0).transpose(), inv.q1.row(0).transpose()};
+  ForwardOptions o{.t0 = 0, .t1 = 16, .samples = 161, .integrator = Integrator::rk4, .step = 2e-3};
+  o.efforts = efforts_from_inverse(m, ex.motion);
+  const ForwardResult r = forward_dynamics(m, s, o);
+  const int ia = r.column("crank.angle");
+  double worst = 0;
+  for (int i = 0; i < r.time.size(); ++i)
+    worst = std::max(worst, std::abs(r.q0(i, ia) - std::numbers::pi / 2 * r.time[i]));
+  EXPECT_LE(worst, 1e-6);
+  // the work of the input equals the change of kinetic energy (no gravity, no dissipation)
+  const int last = static_cast<int>(r.time.size()) - 1;
+  EXPECT_NEAR(r.input_work[last], r.kinetic[last] - r.kinetic[0], 1e-6);
+}
+
+// The three formulations give the same motion where the constraint Jacobian is regular.
+TEST(Forward, FormulationsAgree) {
+  const Model fb = build_model(mechanisms::fourbar().system);
+  const State s = consistent_state(fb, {.positions = {}, .velocities = {{"crank.w", 3.0}}});
+  ForwardOptions o{.t0 = 0, .t1 = 1, .samples = 11, .integrator = Integrator::rk4, .step = 1e-3};
+  o.formulation = Formulation::augmented_lagrangian;
+  const ForwardResult a = forward_dynamics(fb, s, o);
+  o.formulation = Formulation::lagrange;
+  const ForwardResult b = forward_dynamics(fb, s, o);
+  o.formulation = Formulation::null_space;
+  const ForwardResult c = forward_dynamics(fb, s, o);
+  EXPECT_LE((a.q0 - b.q0).cwiseAbs().maxCoeff(), 1e-11);
+  EXPECT_LE((a.q0 - c.q0).cwiseAbs().maxCoeff(), 1e-11);
+  EXPECT_LE((a.q1 - c.q1).cwiseAbs().maxCoeff(), 1e-10);
+}
+
+// Baumgarte (Mo2DPack's mode) lets positions drift; projection keeps them at round-off.
+TEST(Forward, BaumgarteDriftsProjectionDoesNot) {
+  const Model fb = build_model(mechanisms::fourbar().system);
+  const State s = consistent_state(fb, {.positions = {}, .velocities = {{"crank.w", 6.0}}});
+  ForwardOptions o{.t0 = 0, .t1 = 5, .samples = 51, .step = 5e-3};
+  o.integrator = Integrator::baumgarte;
+  const ForwardResult b = forward_dynamics(fb, s, o);
+  o.integrator = Integrator::rk4;
+  const ForwardResult p = forward_dynamics(fb, s, o);
+  EXPECT_LE(p.residuals.col(0).maxCoeff(), 1e-12);
+  EXPECT_GT(b.residuals.col(0).maxCoeff(), 1e3 * p.residuals.col(0).maxCoeff());
+}
+
+// The IFToMM double four-bar goes through its singular (all joints collinear) positions ten times
+// in 10 s; the run must stay on the physical branch. Reference: the parallelogram reduction
+// 3 phi'' = -3.5 g cos(phi), integrated in 40-digit arithmetic (shared/notes/peers.md).
+TEST(Forward, DoubleFourBarStaysOnThePhysicalBranch) {
+  const Model m = build_model(mechanisms::double_fourbar());
+  const State s = consistent_state(m, {.positions = {}, .velocities = {{"crank0.w", -1.0}}});
+  const double rx = 0.328458111541, ry = 0.944518538179;
+  const int ix = m.coordinate("crank0.B.x"), iy = m.coordinate("crank0.B.y");
+  auto final_error = [&](ForwardOptions o) {
+    o.t0 = 0;
+    o.t1 = 10;
+    o.samples = 11;
+    const ForwardResult r = forward_dynamics(m, s, o);
+    const int k = static_cast<int>(r.time.size()) - 1;
+    return std::hypot(r.q0(k, ix) - rx, r.q0(k, iy) - ry);
+  };
+  EXPECT_LE(final_error({.integrator = Integrator::rk4, .step = 1e-3}), 1e-8);
+  EXPECT_LE(final_error({.integrator = Integrator::rk4, .step = 1e-4}), 1e-6);
+  // a branch flip ends near (1, 0), 0.9 m away; BDF at a loose tolerance must stay close
+  EXPECT_LE(final_error({.integrator = Integrator::cvode_bdf, .rtol = 1e-8, .atol = 1e-8}), 1e-3);
+}
+
+TEST(Forward, BadInputIsRefused) {
+  const Model fb = build_model(mechanisms::fourbar().system);
+  auto msg = [](auto&& f) {
+    try {
+      f();
+    } catch (const Error& e) {
+      return std::string(e.what());
+    }
+    return std::string("no error");
+  };
+  EXPECT_NE(msg([&] { consistent_state(fb, {.positions = {}, .velocities = {}}); }).find("1 independent velocities are needed"), std::string::npos);
+  EXPECT_NE(msg([&] { consistent_state(fb, {.positions = {}, .velocities = {{"crank.w", 1}, {"rocker.w", 1}}}); }).find("2 given"), std::string::npos);
+  EXPECT_NE(msg([&] { consistent_state(fb, {.positions = {}, .velocities = {{"crank.wx", 1}}}); }).find("crank.w"), std::string::npos);
+  EXPECT_NE(msg([&] { consistent_state(fb, {.positions = {{"crank.angle", NAN}}, .velocities = {{"crank.w", 1}}}); }).find("crank.angle"), std::string::npos);
+  // the crank tip's y velocity is not independent when the crank is vertical (pure x motion)
+  EXPECT_NE(msg([&] { consistent_state(fb, {.positions = {}, .velocities = {{"crank.A.vy", 1}}}); }).find("not independent"), std::string::npos);
+  const State s = consistent_state(fb, {.positions = {}, .velocities = {{"crank.w", 1}}});
+  EXPECT_NE(msg([&] { forward_dynamics(fb, s, {.t0 = 1, .t1 = 0}); }).find("t0 < t1"), std::string::npos);
+  EXPECT_NE(msg([&] { forward_dynamics(fb, s, {.integrator = Integrator::rk4, .step = -1}); }).find("step"), std::string::npos);
+  EXPECT_NE(msg([&] { forward_dynamics(fb, s, {.rtol = 0}); }).find("tolerances"), std::string::npos);
+  ForwardOptions bad{.integrator = Integrator::rk4};
+  bad.efforts = {[](double t) { return t > 0.5 ? NAN : 0.0; }};
+  const std::string e = msg([&] { forward_dynamics(fb, s, bad); });
+  EXPECT_NE(e.find("crank_pivot.torque"), std::string::npos) << e;
+  EXPECT_NE(e.find("t = 0.5"), std::string::npos) << e;
+  ForwardOptions many{.integrator = Integrator::rk4};
+  many.efforts = {[](double) { return 0.0; }, [](double) { return 0.0; }};
+  EXPECT_NE(msg([&] { forward_dynamics(fb, s, many); }).find("more efforts"), std::string::npos);
+}
