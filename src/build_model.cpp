@@ -54,6 +54,8 @@ struct Flat {
   std::vector<Owned<VelocityConstraintDef>> vel;
   std::vector<Owned<ForceDef>> forces;
   std::vector<Owned<TorqueDef>> torques;
+  std::vector<Owned<SpringDef>> springs;
+  std::vector<Owned<TorsionalSpringDef>> torsional;
 };
 
 void check_name(const std::string& name, const std::string& what) {
@@ -124,6 +126,13 @@ void flatten(const System& s, const std::string& prefix, const Frame& frame, int
     out.forces.push_back({std::move(w), tree_index, prefix});
   }
   for (const auto& t : s.torques()) out.torques.push_back({t, tree_index, prefix});
+  for (const auto& sp : s.springs()) {
+    SpringDef w = sp;
+    w.point_a = frame.apply(sp.point_a);
+    w.point_b = frame.apply(sp.point_b);
+    out.springs.push_back({std::move(w), tree_index, prefix});
+  }
+  for (const auto& ts : s.torsional_springs()) out.torsional.push_back({ts, tree_index, prefix});
   if (tree_index != 0 && s.gravity() != Vec2(0, 0))
     throw Error("subsystem '" + prefix.substr(0, prefix.size() - 1) +
                     "' sets gravity: gravity belongs to the root system",
@@ -991,6 +1000,85 @@ Model build_model(const System& system, const BuildOptions& options) {
       throw Error(what + ": body '" + m.bodies[l.body].name + "' has no rotation", l.name);
     l.torque = t.def.torque;
     m.torques.push_back(std::move(l));
+  }
+
+  // ---- springs -----------------------------------------------------------------------------------
+  auto body_point = [&](const std::string& prefix, const std::string& body, const Vec2& p,
+                        const std::string& what) {
+    BodyPoint bp;
+    if (body == "ground") {
+      bp.fixed = p;
+      return bp;
+    }
+    bp.body = find_body(prefix, body, what);
+    const Body& b = m.bodies[bp.body];
+    if (b.geometry.size() >= 2) {
+      const Vec2 dd = b.geometry[1] - b.geometry[0], r = p - b.geometry[0];
+      bp.ci = 0;
+      bp.cj = 1;
+      bp.gamma = r.dot(dd) / dd.squaredNorm();
+      bp.rho = r.dot(perp(dd)) / dd.squaredNorm();
+    } else if ((p - b.geometry[0]).norm() > 1e-12 * m.scale) {
+      throw Error(what + ": body '" + b.name + "' has one node: the point must be the node", b.name);
+    }
+    return bp;
+  };
+  auto nonnegative = [](double v, const std::string& what, const char* field, const std::string& el) {
+    if (!std::isfinite(v) || v < 0)
+      throw Error(what + ": " + field + " must be finite and >= 0 (got " + std::to_string(v) + ")", el);
+  };
+  for (const auto& sp : flat.springs) {
+    const std::string name = sp.prefix + sp.def.name;
+    const std::string what = "spring '" + name + "'";
+    check_name(sp.def.name, "spring");
+    nonnegative(sp.def.rest_length, what, "rest_length", name);
+    nonnegative(sp.def.stiffness, what, "stiffness", name);
+    nonnegative(sp.def.damping, what, "damping", name);
+    SpringLoad l;
+    l.name = name;
+    l.a = body_point(sp.prefix, sp.def.body_a, sp.def.point_a, what);
+    l.b = body_point(sp.prefix, sp.def.body_b, sp.def.point_b, what);
+    if (l.a.body < 0 && l.b.body < 0) throw Error(what + " joins two ground points", name);
+    l.rest_length = sp.def.rest_length;
+    l.stiffness = sp.def.stiffness;
+    l.damping = sp.def.damping;
+    m.springs.push_back(std::move(l));
+  }
+  for (const auto& ts : flat.torsional) {
+    const std::string name = ts.prefix + ts.def.name;
+    const std::string what = "torsional spring '" + name + "'";
+    check_name(ts.def.name, "torsional spring");
+    nonnegative(ts.def.stiffness, what, "stiffness", name);
+    nonnegative(ts.def.damping, what, "damping", name);
+    int found = -1;
+    for (size_t k = 0; k < flat.revolutes.size(); ++k)
+      if (flat.revolutes[k].prefix + flat.revolutes[k].def.name == ts.prefix + ts.def.joint)
+        found = static_cast<int>(k);
+    if (found < 0) {
+      std::vector<std::string> names;
+      for (const auto& j : flat.revolutes) names.push_back(j.prefix + j.def.name);
+      throw Error(what + ": unknown revolute joint '" + ts.prefix + ts.def.joint + "'" +
+                      suggestion(ts.prefix + ts.def.joint, names),
+                  name);
+    }
+    TorsionalLoad l;
+    l.name = name;
+    l.body1 = element_body[revolute_elements[found][0]];
+    l.body2 = element_body[revolute_elements[found][1]];
+    auto angle0 = [&](int body) {
+      if (body < 0) return 0.0;
+      const Body& b = m.bodies[body];
+      if (b.geometry.size() < 2)
+        throw Error(what + ": body '" + b.name + "' has one node and no orientation", name);
+      const Vec2 d = b.geometry[1] - b.geometry[0];
+      return std::atan2(d.y(), d.x());
+    };
+    const double implied = angle0(l.body2) - angle0(l.body1);
+    if (ts.def.rest && !std::isfinite(*ts.def.rest)) throw Error(what + ": rest angle not finite", name);
+    l.rest = ts.def.rest.value_or(implied);
+    l.stiffness = ts.def.stiffness;
+    l.damping = ts.def.damping;
+    m.torsional_springs.push_back(std::move(l));
   }
 
   // aliases of rotation labels (bodies sharing a rotation) and input label uniqueness

@@ -50,9 +50,76 @@ void body_inertia(const Model& m, const Eigen::Ref<const VectorXd>& a1,
   }
 }
 
-void body_applied(const Model& m, const Eigen::Ref<const VectorXd>& q0, double t,
-                  Eigen::Ref<VectorXd> local) {
-  (void)q0;
+namespace {
+
+struct PointState {
+  Vec2 p, v;
+};
+PointState point_state(const Model& m, const BodyPoint& bp, const Eigen::Ref<const VectorXd>& q0,
+                       const Eigen::Ref<const VectorXd>& q1) {
+  if (bp.body < 0) return {bp.fixed, Vec2(0, 0)};
+  const Body& b = m.bodies[bp.body];
+  return {local_velocity_of_point(b, q0, bp.ci, bp.cj, bp.gamma, bp.rho),
+          local_velocity_of_point(b, q1, bp.ci, bp.cj, bp.gamma, bp.rho)};
+}
+
+double relative_angle(const Model& m, const TorsionalLoad& l, const Eigen::Ref<const VectorXd>& q0) {
+  auto th = [&](int body) { return body < 0 ? 0.0 : body_angle(m.bodies[body], q0); };
+  return detail::wrap_angle(th(l.body2) - th(l.body1) - l.rest);
+}
+
+double relative_rate(const Model& m, const TorsionalLoad& l, const Eigen::Ref<const VectorXd>& q1) {
+  auto w = [&](int body) { return body < 0 ? 0.0 : omega_value(m.bodies[body].omega, q1); };
+  return w(l.body2) - w(l.body1);
+}
+
+// Spring: length, its rate and the unit vector from a to b.
+struct SpringState {
+  double l, ldot;
+  Vec2 e;
+};
+SpringState spring_state(const Model& m, const SpringLoad& s, const Eigen::Ref<const VectorXd>& q0,
+                         const Eigen::Ref<const VectorXd>& q1) {
+  const PointState a = point_state(m, s.a, q0, q1), b = point_state(m, s.b, q0, q1);
+  const Vec2 d = b.p - a.p;
+  const double l = d.norm();
+  const Vec2 e = l > 0 ? Vec2(d / l) : Vec2(0, 0);
+  return {l, e.dot(b.v - a.v), e};
+}
+
+}  // namespace
+
+double potential_energy(const Model& m, const Eigen::Ref<const VectorXd>& q0) {
+  double v = 0;
+  for (const Body& b : m.bodies) v -= b.mass * m.gravity.dot(com_position(b, q0));
+  const VectorXd zero = VectorXd::Zero(m.n1);
+  for (const auto& s : m.springs) {
+    const double dl = spring_state(m, s, q0, zero).l - s.rest_length;
+    v += 0.5 * s.stiffness * dl * dl;
+  }
+  for (const auto& l : m.torsional_springs) {
+    const double th = relative_angle(m, l, q0);
+    v += 0.5 * l.stiffness * th * th;
+  }
+  return v;
+}
+
+double damping_power(const Model& m, const Eigen::Ref<const VectorXd>& q0,
+                     const Eigen::Ref<const VectorXd>& q1) {
+  double p = 0;
+  for (const auto& s : m.springs) {
+    const double ld = spring_state(m, s, q0, q1).ldot;
+    p += s.damping * ld * ld;
+  }
+  for (const auto& l : m.torsional_springs) {
+    const double w = relative_rate(m, l, q1);
+    p += l.damping * w * w;
+  }
+  return p;
+}
+
+void body_applied(const Model& m, const Eigen::Ref<const VectorXd>& q0,
+                  const Eigen::Ref<const VectorXd>& q1, double t, Eigen::Ref<VectorXd> local) {
   local.setZero();
   for (const Body& b : m.bodies)
     add_point_force(b, b.ci, b.cj, b.gamma, b.rho, b.mass * m.gravity, local.data() + b.offset);
@@ -71,6 +138,21 @@ void body_applied(const Model& m, const Eigen::Ref<const VectorXd>& q0, double t
       throw Error("torque '" + tq.name + "' is not finite at t = " + std::to_string(t) + " s",
                   tq.name, t);
     local[b.offset + b.slots() - 1] += tau;
+  }
+  for (const auto& s : m.springs) {  // tension T pulls a towards b and b towards a
+    const SpringState st = spring_state(m, s, q0, q1);
+    const double T = s.stiffness * (st.l - s.rest_length) + s.damping * st.ldot;
+    if (s.a.body >= 0)
+      add_point_force(m.bodies[s.a.body], s.a.ci, s.a.cj, s.a.gamma, s.a.rho, T * st.e,
+                      local.data() + m.bodies[s.a.body].offset);
+    if (s.b.body >= 0)
+      add_point_force(m.bodies[s.b.body], s.b.ci, s.b.cj, s.b.gamma, s.b.rho, -T * st.e,
+                      local.data() + m.bodies[s.b.body].offset);
+  }
+  for (const auto& l : m.torsional_springs) {
+    const double tau = -l.stiffness * relative_angle(m, l, q0) - l.damping * relative_rate(m, l, q1);
+    if (l.body2 >= 0) local[m.bodies[l.body2].offset + m.bodies[l.body2].slots() - 1] += tau;
+    if (l.body1 >= 0) local[m.bodies[l.body1].offset + m.bodies[l.body1].slots() - 1] -= tau;
   }
 }
 
@@ -101,10 +183,10 @@ MatrixXd mass_matrix(const Model& m) {
   return M;
 }
 
-void applied_forces(const Model& m, const Eigen::Ref<const VectorXd>& q0, double t,
-                    Eigen::Ref<VectorXd> f) {
+void applied_forces(const Model& m, const Eigen::Ref<const VectorXd>& q0,
+                    const Eigen::Ref<const VectorXd>& q1, double t, Eigen::Ref<VectorXd> f) {
   VectorXd local(m.n_slots);
-  body_applied(m, q0, t, local);
+  body_applied(m, q0, q1, t, local);
   f.setZero();
   scatter_local(m, local, f);
 }

@@ -63,12 +63,6 @@ double kinetic_energy(const Model& m, const VectorXd& q1) {
   return 0.5 * q1.dot(Mq);
 }
 
-double potential_energy(const Model& m, const VectorXd& q0) {
-  double v = 0;
-  for (const Body& b : m.bodies) v -= b.mass * m.gravity.dot(com_position(b, q0));
-  return v;
-}
-
 State consistent_state(const Model& m, const InitialConditions& ic, double t0) {
   VectorXd q0 = m.q0;
   std::vector<int> fixed;
@@ -186,7 +180,7 @@ struct ForwardData {
     velocity_jacobian(m, q0, t, A, b);
     acceleration_rhs(m, q0, q1, t, c);
     if (baumgarte) c.noalias() -= o.baumgarte_alpha * (A * q1 - b);
-    body_applied(m, q0, t, local);
+    body_applied(m, q0, q1, t, local);
     f.setZero();
     scatter_local(m, local, f);
     inputs(t);
@@ -304,6 +298,9 @@ struct ForwardData {
         break;
       }
     }
+    if (!q0.allFinite() || !q1.allFinite())
+      throw Error("forward dynamics of '" + m.name + "': the integrator produced a non-finite state "
+                  "at t = " + fmt(t), m.name, t);
     if (!a.allFinite())
       throw Error("forward dynamics of '" + m.name + "': non-finite accelerations at t = " + fmt(t),
                   m.name, t);
@@ -362,7 +359,7 @@ struct Recorder {
   ForwardResult& r;
   ForwardData& d;
   int k = 0;
-  void record(double t, const VectorXd& q0, const VectorXd& q1, double work) {
+  void record(double t, const VectorXd& q0, const VectorXd& q1, double work, double dissipated) {
     r.time[k] = t;
     r.q0.row(k) = q0.transpose();
     r.q1.row(k) = q1.transpose();
@@ -371,6 +368,7 @@ struct Recorder {
     r.kinetic[k] = kinetic_energy(m, q1);
     r.potential[k] = potential_energy(m, q0);
     r.input_work[k] = work;
+    r.dissipated[k] = dissipated;
     VectorXd psi(m.m0);
     position_residual(m, q0, t, psi);
     r.residuals(k, 0) = m.m0 ? psi.lpNorm<Eigen::Infinity>() : 0.0;
@@ -391,9 +389,9 @@ void run_rk4(const Model& m, ForwardData& d, const State& s0, const ForwardOptio
   const bool baum = o.integrator == Integrator::baumgarte;
   const int n0 = m.n0, n1 = m.n1;
   VectorXd q0 = s0.q0, q1 = s0.q1;
-  double W = 0, t = o.t0;
-  // state derivative: (q1.head(n0), a1, u.B^T q1)
-  VectorXd k0[4], k1[4], kw(4);
+  double W = 0, D = 0, t = o.t0;
+  // state derivative: (q1.head(n0), a1, input power u.B^T q1, damper power)
+  VectorXd k0[4], k1[4], kw(4), kd(4);
   for (int i = 0; i < 4; ++i) k0[i].resize(n0), k1[i].resize(n1);
   VectorXd y0(n0), y1(n1);
   auto deriv = [&](int i, double tt, const VectorXd& x0, const VectorXd& x1) {
@@ -401,19 +399,20 @@ void run_rk4(const Model& m, ForwardData& d, const State& s0, const ForwardOptio
     k0[i] = x1.head(n0);
     k1[i] = d.a;
     kw[i] = d.Bu.dot(x1);
+    kd[i] = damping_power(m, x0, x1);
   };
   auto event = [&](double tt, const VectorXd& x0, const VectorXd& x1) {
     return o.stop_when ? o.stop_when(tt, x0, x1) : 1.0;
   };
   const double tol_pos = 1e-13 * m.scale, tol_vel = 1e-13 * m.scale;
-  rec.record(t, q0, q1, W);
+  rec.record(t, q0, q1, W, D);
   double g_prev = event(t, q0, q1);
   for (int k = 1; k < o.samples; ++k) {
     const double t_out = o.t0 + (o.t1 - o.t0) * k / (o.samples - 1);
     const int nsteps = std::max(1, static_cast<int>(std::ceil((t_out - t) / o.step - 1e-9)));
     const double h = (t_out - t) / nsteps;
     for (int s = 0; s < nsteps; ++s) {
-      auto step = [&](double hh, VectorXd& x0, VectorXd& x1, double& w, double tt) {
+      auto step = [&](double hh, VectorXd& x0, VectorXd& x1, double& w, double& dd, double tt) {
         deriv(0, tt, x0, x1);
         y0 = x0 + 0.5 * hh * k0[0];
         y1 = x1 + 0.5 * hh * k1[0];
@@ -427,12 +426,13 @@ void run_rk4(const Model& m, ForwardData& d, const State& s0, const ForwardOptio
         x0 += (hh / 6) * (k0[0] + 2 * k0[1] + 2 * k0[2] + k0[3]);
         x1 += (hh / 6) * (k1[0] + 2 * k1[1] + 2 * k1[2] + k1[3]);
         w += (hh / 6) * (kw[0] + 2 * kw[1] + 2 * kw[2] + kw[3]);
+        dd += (hh / 6) * (kd[0] + 2 * kd[1] + 2 * kd[2] + kd[3]);
         if (!baum) d.project(tt + hh, x0, x1, tol_pos, tol_vel);
         ++d.stats.steps;
       };
       const VectorXd q0s = q0, q1s = q1;
-      const double Ws = W, ts = t;
-      step(h, q0, q1, W, t);
+      const double Ws = W, Ds = D, ts = t;
+      step(h, q0, q1, W, D, t);
       t = ts + h;
       if (o.stop_when) {
         const double g = event(t, q0, q1);
@@ -442,25 +442,25 @@ void run_rk4(const Model& m, ForwardData& d, const State& s0, const ForwardOptio
           for (int it = 0; it < 40; ++it) {
             const double mid = lo + (hi - lo) * glo / (glo - ghi);
             VectorXd a0 = q0s, a1 = q1s;
-            double w = Ws;
-            step(mid, a0, a1, w, ts);
+            double w = Ws, dd = Ds;
+            step(mid, a0, a1, w, dd, ts);
             const double gm = event(ts + mid, a0, a1);
             if ((gm < 0) == (glo < 0)) lo = mid, glo = gm; else hi = mid, ghi = gm;
             if (std::abs(hi - lo) < 1e-13 * std::max(1.0, std::abs(ts)) || gm == 0) {
-              q0 = a0, q1 = a1, W = w, t = ts + mid;
+              q0 = a0, q1 = a1, W = w, D = dd, t = ts + mid;
               break;
             }
           }
           d.stats.stopped_by_event = true;
           d.stats.t_end = t;
-          rec.record(t, q0, q1, W);
+          rec.record(t, q0, q1, W, D);
           return;
         }
         g_prev = g;
       }
     }
     t = t_out;
-    rec.record(t, q0, q1, W);
+    rec.record(t, q0, q1, W, D);
   }
   d.stats.t_end = t;
 }
@@ -489,7 +489,9 @@ int cv_rhs(realtype t, N_Vector y, N_Vector ydot, void* user) {
   }
   Eigen::Map<VectorXd>(out, m.n0) = u->q1.head(m.n0);
   Eigen::Map<VectorXd>(out + m.n0, m.n1) = u->d->a;
+
   out[m.n0 + m.n1] = u->d->Bu.dot(u->q1);
+  out[m.n0 + m.n1 + 1] = damping_power(m, u->q0, u->q1);
   return 0;
 }
 
@@ -506,7 +508,8 @@ int cv_proj(realtype t, N_Vector ycur, N_Vector corr, realtype eps, N_Vector err
   d.project(t, q0, q1, 1e-12 * m.scale, 1e-12 * m.scale);
   Eigen::Map<VectorXd>(c, m.n0) = q0 - q0s;
   Eigen::Map<VectorXd>(c + m.n0, m.n1) = q1 - q1s;
-  c[m.n0 + m.n1] = 0;
+
+  c[m.n0 + m.n1] = c[m.n0 + m.n1 + 1] = 0;
   if (err) {  // project the error estimate on the tangent spaces
     double* e = N_VGetArrayPointer(err);
     Eigen::Map<VectorXd> e0(e, m.n0), e1(e + m.n0, m.n1);
@@ -557,7 +560,7 @@ void check_flag(int flag, const char* call, double t) {
 
 void run_cvode(const Model& m, ForwardData& d, const State& s0, const ForwardOptions& o,
                Recorder& rec) {
-  const int n = m.n0 + m.n1 + 1;
+  const int n = m.n0 + m.n1 + 2;  // q0, q1, input work, dissipated energy
   SUNContext ctx = nullptr;
   check_flag(SUNContext_Create(nullptr, &ctx), "SUNContext_Create", o.t0);
   std::unique_ptr<std::remove_pointer_t<SUNContext>, SundialsDeleter> ctx_guard(ctx);
@@ -568,9 +571,10 @@ void run_cvode(const Model& m, ForwardData& d, const State& s0, const ForwardOpt
   double* yd = N_VGetArrayPointer(y);
   Eigen::Map<VectorXd>(yd, m.n0) = s0.q0;
   Eigen::Map<VectorXd>(yd + m.n0, m.n1) = s0.q1;
-  yd[n - 1] = 0;
+  yd[n - 2] = yd[n - 1] = 0;
   N_VConst(o.atol, atol);
-  N_VGetArrayPointer(atol)[n - 1] = 1e6;  // the work quadrature does not control the step
+  // the quadratures are integrated to the state's accuracy but do not control the step
+  N_VGetArrayPointer(atol)[n - 2] = N_VGetArrayPointer(atol)[n - 1] = 1e6;
   const bool bdf = o.integrator == Integrator::cvode_bdf;
   void* mem = CVodeCreate(bdf ? CV_BDF : CV_ADAMS, ctx);
   if (!mem) throw Error("SUNDIALS CVodeCreate failed", "CVodeCreate", o.t0);
@@ -601,7 +605,7 @@ void run_cvode(const Model& m, ForwardData& d, const State& s0, const ForwardOpt
   }
   if (o.stop_when) check_flag(CVodeRootInit(mem, 1, cv_root), "CVodeRootInit", o.t0);
   VectorXd q0 = s0.q0, q1 = s0.q1;
-  rec.record(o.t0, q0, q1, 0.0);
+  rec.record(o.t0, q0, q1, 0.0, 0.0);
   double t = o.t0;
   for (int k = 1; k < o.samples; ++k) {
     const double t_out = o.t0 + (o.t1 - o.t0) * k / (o.samples - 1);
@@ -622,7 +626,7 @@ void run_cvode(const Model& m, ForwardData& d, const State& s0, const ForwardOpt
     }
     q0 = Eigen::Map<const VectorXd>(yd, m.n0);
     q1 = Eigen::Map<const VectorXd>(yd + m.n0, m.n1);
-    rec.record(t, q0, q1, yd[n - 1]);
+    rec.record(t, q0, q1, yd[n - 2], yd[n - 1]);
     if (flag == CV_ROOT_RETURN) {
       d.stats.stopped_by_event = true;
       break;
@@ -669,7 +673,7 @@ ForwardResult forward_dynamics(const Model& m, const State& initial, const Forwa
   r.q0 = MatrixXd::Zero(N, m.n0);
   r.q1 = MatrixXd::Zero(N, m.n1);
   r.a1 = MatrixXd::Zero(N, m.n1);
-  r.kinetic = r.potential = r.input_work = VectorXd::Zero(N);
+  r.kinetic = r.potential = r.input_work = r.dissipated = VectorXd::Zero(N);
   r.residuals = MatrixXd::Zero(N, 2);
   Recorder rec{m, r, d};
   const double start = detail::cpu_seconds();
@@ -695,6 +699,7 @@ ForwardResult forward_dynamics(const Model& m, const State& initial, const Forwa
   r.kinetic.conservativeResize(used);
   r.potential.conservativeResize(used);
   r.input_work.conservativeResize(used);
+  r.dissipated.conservativeResize(used);
   r.residuals.conservativeResize(used, Eigen::NoChange);
   r.stats = d.stats;
   return r;

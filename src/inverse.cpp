@@ -329,7 +329,7 @@ void inverse_dynamics_sample(const Model& m, InverseData& d, double t) {
 
   // ---- efforts: C^T (M a1 - f - B u) = 0, C = K^-1 [0; I]  (Theorem 4.3, eq. 2.29)
   body_inertia(m, d.a1, d.local_a);
-  body_applied(m, d.q0, t, d.local);
+  body_applied(m, d.q0, d.q1, t, d.local);
   d.local_a -= d.local;  // M a - f, body-local
   d.w.setZero();
   scatter_local(m, d.local_a, d.w);

@@ -42,7 +42,7 @@ InverseResult inverse_dynamics_lagrange(const Model& m, std::span<const Prescrib
     inverse_dynamics_sample(m, d, t);  // positions and velocities (its dynamics are not used)
     velocity_jacobian(m, d.q0, t, A, bb);
     acceleration_rhs(m, d.q0, d.q1, t, c);
-    applied_forces(m, d.q0, t, f);
+    applied_forces(m, d.q0, d.q1, t, f);
     L.setZero();
     L.topLeftCorner(n1, n1) = M;
     L.block(0, n1, n1, m1) = A.transpose();

@@ -50,6 +50,14 @@ System& System::add_torque(TorqueDef torque) {
   torques_.push_back(std::move(torque));
   return *this;
 }
+System& System::add_spring(SpringDef spring) {
+  springs_.push_back(std::move(spring));
+  return *this;
+}
+System& System::add_torsional_spring(TorsionalSpringDef spring) {
+  torsional_.push_back(std::move(spring));
+  return *this;
+}
 System& System::add_instance(std::string name, const System& sub, Placement placement) {
   instances_.push_back({std::move(name), std::make_shared<const System>(sub), placement});
   return *this;

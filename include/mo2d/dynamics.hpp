@@ -18,18 +18,22 @@ using Eigen::VectorXd;
 
 // Local generalized inertia force M_b a_b for every body (concatenated, Body::offset).
 void body_inertia(const Model& m, const Eigen::Ref<const VectorXd>& a1, Eigen::Ref<VectorXd> local);
-// Local applied generalized forces (gravity, forces, torques) at time t.
-void body_applied(const Model& m, const Eigen::Ref<const VectorXd>& q0, double t,
-                  Eigen::Ref<VectorXd> local);
+// Local applied generalized forces (gravity, forces, torques, spring-dampers) at time t.
+void body_applied(const Model& m, const Eigen::Ref<const VectorXd>& q0,
+                  const Eigen::Ref<const VectorXd>& q1, double t, Eigen::Ref<VectorXd> local);
 // Sum local slots into reduced variables: out += P^T local.
 void scatter_local(const Model& m, const Eigen::Ref<const VectorXd>& local,
                    Eigen::Ref<VectorXd> out);
 
 // Dense reduced mass matrix (n1 x n1), for checks and the Lagrange formulation.
 MatrixXd mass_matrix(const Model& m);
-// Reduced applied forces f(q0, t) (n1).
-void applied_forces(const Model& m, const Eigen::Ref<const VectorXd>& q0, double t,
-                    Eigen::Ref<VectorXd> f);
+// Reduced applied forces f(q0, q1, t) (n1).
+void applied_forces(const Model& m, const Eigen::Ref<const VectorXd>& q0,
+                    const Eigen::Ref<const VectorXd>& q1, double t, Eigen::Ref<VectorXd> f);
+// Potential energy of gravity and springs; power dissipated by the dampers (>= 0).
+double potential_energy(const Model& m, const Eigen::Ref<const VectorXd>& q0);
+double damping_power(const Model& m, const Eigen::Ref<const VectorXd>& q0,
+                     const Eigen::Ref<const VectorXd>& q1);
 // Input matrix B (n1 x inputs): generalized force per unit effort.
 MatrixXd input_matrix(const Model& m);
 

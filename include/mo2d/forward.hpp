@@ -18,6 +18,7 @@
 #include <utility>
 #include <vector>
 
+#include "mo2d/dynamics.hpp"
 #include "mo2d/inverse.hpp"
 #include "mo2d/model.hpp"
 
@@ -84,8 +85,9 @@ struct ForwardResult {
   std::vector<std::string> coordinate_labels, rate_labels;
   VectorXd time;
   MatrixXd q0, q1, a1;         // samples x n0 / n1 / n1
-  VectorXd kinetic, potential;  // energies (J); potential of gravity, datum y = 0
+  VectorXd kinetic, potential;  // energies (J); potential of gravity (datum y = 0) and springs
   VectorXd input_work;          // integral of the input power from t0 (J)
+  VectorXd dissipated;          // integral of the damper power from t0 (J, >= 0)
   MatrixXd residuals;           // samples x 2: |psi|_inf, |A q1 - b|_inf
   ForwardStats stats;
   int column(const std::string& coordinate_label) const;
@@ -102,8 +104,7 @@ std::vector<std::function<double(double)>> efforts_from_inverse(
     const Model& m, std::vector<Prescribed> prescribed, const InverseOptions& options = {});
 std::vector<std::function<double(double)>> efforts_from_samples(const InverseResult& r);
 
-// Kinetic energy 1/2 q1^T M q1 and potential energy of gravity of a state.
+// Kinetic energy 1/2 q1^T M q1 (potential_energy and damping_power: mo2d/dynamics.hpp).
 double kinetic_energy(const Model& m, const VectorXd& q1);
-double potential_energy(const Model& m, const VectorXd& q0);
 
 }  // namespace mo2d

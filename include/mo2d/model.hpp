@@ -120,6 +120,24 @@ struct TorqueLoad {
   Signal torque;
 };
 
+// A point fixed in a body (by local nodes like the centre of mass) or in the ground.
+struct BodyPoint {
+  int body = -1;  // -1: ground, at `fixed`
+  int ci = 0, cj = -1;
+  double gamma = 0, rho = 0;
+  Vec2 fixed{0, 0};
+};
+struct SpringLoad {
+  std::string name;
+  BodyPoint a, b;
+  double rest_length = 0, stiffness = 0, damping = 0;
+};
+struct TorsionalLoad {
+  std::string name;
+  int body1 = -1, body2 = -1;  // -1: ground
+  double stiffness = 0, damping = 0, rest = 0;
+};
+
 // A joint eliminated by variable reduction: its reaction is recovered by splitting the merged
 // node's (or rotation's) generalized force between the bodies that share it.
 struct MergeEdge {
@@ -176,6 +194,8 @@ struct Model {
   Vec2 gravity{0, 0};
   std::vector<PointLoad> forces;
   std::vector<TorqueLoad> torques;
+  std::vector<SpringLoad> springs;
+  std::vector<TorsionalLoad> torsional_springs;
 
   std::vector<TreeNode> tree;  // tree[0] is the root
   Eigen::VectorXd q0;          // initial configuration (assembled)

@@ -134,6 +134,30 @@ struct TorqueDef {
   Signal torque{};
 };
 
+// A linear spring-damper between two points fixed in bodies ("ground" allowed), given in the
+// System's frame at the initial configuration. Tension T = k (l - rest_length) + c dl/dt pulls the
+// points together when positive.
+struct SpringDef {
+  std::string name{};
+  std::string body_a{};
+  Vec2 point_a{0, 0};
+  std::string body_b{};
+  Vec2 point_b{0, 0};
+  double rest_length = 0;  // m (>= 0)
+  double stiffness = 0;    // N/m (>= 0)
+  double damping = 0;      // N s/m (>= 0)
+};
+
+// A torsional spring-damper at a revolute joint: torque -k (theta - rest) - c (w2 - w1) on body 2
+// and the opposite on body 1, theta = relative angle of the bodies (measured within +-pi of rest).
+struct TorsionalSpringDef {
+  std::string name{};
+  std::string joint{};           // a revolute joint of this System
+  double stiffness = 0;          // N m / rad
+  double damping = 0;            // N m s / rad
+  std::optional<double> rest{};  // rad; default: the relative angle at the initial configuration
+};
+
 struct Placement {
   Vec2 offset{0, 0};
   double angle = 0;  // rad, applied before the offset
@@ -163,6 +187,8 @@ class System {
   System& add_constraint(VelocityConstraintDef constraint);
   System& add_force(ForceDef force);
   System& add_torque(TorqueDef torque);
+  System& add_spring(SpringDef spring);
+  System& add_torsional_spring(TorsionalSpringDef spring);
   System& add_instance(std::string name, const System& sub, Placement placement = {});
   System& set_gravity(Vec2 g);
 
@@ -177,6 +203,8 @@ class System {
   const std::vector<VelocityConstraintDef>& velocity_constraints() const { return vel_; }
   const std::vector<ForceDef>& forces() const { return forces_; }
   const std::vector<TorqueDef>& torques() const { return torques_; }
+  const std::vector<SpringDef>& springs() const { return springs_; }
+  const std::vector<TorsionalSpringDef>& torsional_springs() const { return torsional_; }
   const std::vector<Instance>& instances() const { return instances_; }
   const Vec2& gravity() const { return gravity_; }
 
@@ -192,6 +220,8 @@ class System {
   std::vector<VelocityConstraintDef> vel_;
   std::vector<ForceDef> forces_;
   std::vector<TorqueDef> torques_;
+  std::vector<SpringDef> springs_;
+  std::vector<TorsionalSpringDef> torsional_;
   std::vector<Instance> instances_;
   Vec2 gravity_{0, 0};
 };
