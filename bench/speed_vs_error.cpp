@@ -37,11 +37,14 @@ int main() {
                   e.what());
     }
   };
-  for (double h : {4e-3, 2e-3, 1e-3, 1e-4})
-    row({.integrator = Integrator::rk4, .step = h}, "h = " + std::to_string(h).substr(0, 6));
+  auto g = [](const char* prefix, double v) {
+    char buf[64];
+    std::snprintf(buf, sizeof buf, "%s%g", prefix, v);
+    return std::string(buf);
+  };
+  for (double h : {4e-3, 2e-3, 1e-3, 1e-4}) row({.integrator = Integrator::rk4, .step = h}, g("h = ", h));
   for (double tol : {1e-6, 1e-8, 1e-10})
-    row({.integrator = Integrator::cvode_bdf, .rtol = tol, .atol = tol},
-        "tol " + std::to_string(tol).substr(0, 12));
+    row({.integrator = Integrator::cvode_bdf, .rtol = tol, .atol = tol}, g("tol ", tol));
   row({.integrator = Integrator::cvode_adams, .rtol = 1e-8, .atol = 1e-8}, "tol 1e-8, no projection");
   row({.integrator = Integrator::baumgarte, .step = 1e-3}, "h = 1e-3, alpha 20/s");
   return 0;
