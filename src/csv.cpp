@@ -55,6 +55,30 @@ std::string inverse_csv(const InverseResult& r) {
   return s.str();
 }
 
+std::string forward_csv(const ForwardResult& r) {
+  std::ostringstream s;
+  s.precision(17);
+  s << "t";
+  for (const auto& l : r.coordinate_labels) s << "," << l;
+  for (const auto& l : r.rate_labels) s << "," << l;
+  for (const auto& l : r.rate_labels) s << "," << l << ".dot";
+  s << ",energy.kinetic,energy.potential,work.inputs,energy.dissipated";
+  s << ",residual.position,residual.velocity\n";
+  for (int k = 0; k < r.time.size(); ++k) {
+    s << r.time[k];
+    for (int j = 0; j < r.q0.cols(); ++j) s << "," << r.q0(k, j);
+    for (int j = 0; j < r.q1.cols(); ++j) s << "," << r.q1(k, j);
+    for (int j = 0; j < r.a1.cols(); ++j) s << "," << r.a1(k, j);
+    s << "," << r.kinetic[k] << "," << r.potential[k] << "," << r.input_work[k] << ","
+      << r.dissipated[k] << "," << r.residuals(k, 0) << "," << r.residuals(k, 1) << "\n";
+  }
+  return s.str();
+}
+
+void write_forward_csv(const ForwardResult& r, const std::string& path) {
+  write_file_atomically(path, forward_csv(r));
+}
+
 void write_inverse_csv(const InverseResult& r, const std::string& path) {
   write_file_atomically(path, inverse_csv(r));
 }

@@ -2,6 +2,7 @@
 // double four-bar reference; the error of each integrator falls at its expected rate.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <numbers>
 
@@ -251,4 +252,15 @@ TEST(Forward, BadInputIsRefused) {
   ForwardOptions many{.integrator = Integrator::rk4};
   many.efforts = {[](double) { return 0.0; }, [](double) { return 0.0; }};
   EXPECT_NE(msg([&] { forward_dynamics(fb, s, many); }).find("more efforts"), std::string::npos);
+}
+
+TEST(Forward, CsvHasLabelledHeader) {
+  const Pendulum p = released_pendulum(0.5);
+  const ForwardResult r = forward_dynamics(
+      p.model, p.start, {.t0 = 0, .t1 = 0.1, .samples = 3, .integrator = Integrator::rk4, .step = 1e-3});
+  const std::string csv = forward_csv(r);
+  const std::string header = csv.substr(0, csv.find('\n'));
+  EXPECT_EQ(header.find("t,link.P.x,link.P.y,link.angle,link.P.vx"), 0u) << header;
+  EXPECT_NE(header.find("energy.kinetic,energy.potential,work.inputs,energy.dissipated"), std::string::npos);
+  EXPECT_EQ(std::count(csv.begin(), csv.end(), '\n'), 4);
 }

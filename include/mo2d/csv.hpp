@@ -2,6 +2,7 @@
 // CSV output with a header of labels, written atomically (temporary file, then rename).
 #include <string>
 
+#include "mo2d/forward.hpp"
 #include "mo2d/inverse.hpp"
 
 namespace mo2d {
@@ -13,5 +14,10 @@ void write_file_atomically(const std::string& path, const std::string& content);
 // reactions, residual.position, residual.velocity, residual.acceleration.
 std::string inverse_csv(const InverseResult& r);
 void write_inverse_csv(const InverseResult& r, const std::string& path);
+
+// Columns: t, coordinates, quasi-velocities, their derivatives (label + ".dot"), energy.kinetic,
+// energy.potential, work.inputs, energy.dissipated, residual.position, residual.velocity.
+std::string forward_csv(const ForwardResult& r);
+void write_forward_csv(const ForwardResult& r, const std::string& path);
 
 }  // namespace mo2d
