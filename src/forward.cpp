@@ -503,9 +503,12 @@ int cv_proj(realtype t, N_Vector ycur, N_Vector corr, realtype eps, N_Vector err
   double* c = N_VGetArrayPointer(corr);
   VectorXd q0 = Eigen::Map<const VectorXd>(y, m.n0), q1 = Eigen::Map<const VectorXd>(y + m.n0, m.n1);
   const VectorXd q0s = q0, q1s = q1;
-  // project to a tolerance well below the solver's (eps is CVODE's projection tolerance in WRMS)
+  // Project well below the solver's own tolerance: CVODE measures the correction in its error
+  // weights (1 / (rtol |y| + atol)), so a projection left at a looser level than atol makes every
+  // step look inaccurate and drives the step size to zero. (eps: CVODE's projection tolerance.)
   (void)eps;
-  d.project(t, q0, q1, 1e-12 * m.scale, 1e-12 * m.scale);
+  const double tol = std::max(1e-3 * d.o.atol, 4e-16 * m.scale);
+  d.project(t, q0, q1, tol, tol);
   Eigen::Map<VectorXd>(c, m.n0) = q0 - q0s;
   Eigen::Map<VectorXd>(c + m.n0, m.n1) = q1 - q1s;
 
