@@ -17,6 +17,7 @@
 #include <cmath>
 #include <numbers>
 
+#include "mo2d/detail/reactions.hpp"
 #include "mo2d/error.hpp"
 #include "mo2d/model.hpp"
 
@@ -316,6 +317,16 @@ struct DenseVelSink {  // velocity Jacobian A (columns = q1 indices)
   Eigen::Ref<Eigen::MatrixXd> A;
   void add(int row, const VarRef& ref, double v) {
     if (ref.var >= 0) A(row, ref.var) += v;
+  }
+};
+struct SlotRecordSink {  // writes A and records the entries owned by body slots (reactions)
+  Eigen::Ref<Eigen::MatrixXd> A;
+  const Model& m;
+  std::vector<SlotEntry>& entries;
+  void add(int row, const VarRef& ref, double v) {
+    if (ref.var >= 0) A(row, ref.var) += v;
+    if (ref.body >= 0 && ref.slot >= 0)
+      entries.push_back({row, m.bodies[ref.body].offset + ref.slot, v});
   }
 };
 struct NullSink {

@@ -19,17 +19,6 @@ namespace mo2d {
 
 namespace {
 
-struct RecordSink {  // writes A into K's top rows and records the entries owned by body slots
-  Eigen::Ref<MatrixXd> A;
-  const Model& m;
-  std::vector<InverseData::Entry>& entries;
-  void add(int row, const VarRef& ref, double v) {
-    if (ref.var >= 0) A(row, ref.var) += v;
-    if (ref.body >= 0 && ref.slot >= 0)
-      entries.push_back({row, m.bodies[ref.body].offset + ref.slot, v});
-  }
-};
-
 double pivot_ratio(const Eigen::PartialPivLU<MatrixXd>& lu) {
   if (lu.matrixLU().rows() == 0) return 1.0;
   const auto d = lu.matrixLU().diagonal().cwiseAbs();
@@ -140,17 +129,12 @@ InverseData::InverseData(const Model& m, std::span<const Prescribed> prescribed,
   lu_pos = detail::SmallLU(nfree);
   lu_K = detail::SmallLU(m.n1);
   lu_u = Eigen::PartialPivLU<MatrixXd>(dof);
-  int total = 0;
-  for (const auto& e : m.merge_edges) {
-    edge_offset.push_back(total);
-    total += e.rotation ? 1 : 2;
-  }
-  edge_force.assign(total, 0.0);
+  edge_force.assign(detail::merge_edge_layout(m, edge_offset), 0.0);
   // size the entry list with a dry run (the pattern is fixed)
   MatrixXd A(m.m1, m.n1);
   VectorXd bb(m.m1);
   A.setZero();
-  RecordSink sink{A, m, entries};
+  detail::SlotRecordSink sink{A, m, entries};
   for (const auto& k : m.constraints) detail::velocity_rows(m, k, m.q0, o.t0, bb, sink);
   entries.reserve(entries.size() * 2 + 16);
   entries.clear();
@@ -292,7 +276,7 @@ void inverse_dynamics_sample(const Model& m, InverseData& d, double t) {
   // ---- velocities and accelerations: K = [A; E]
   d.K.setZero();
   d.entries.clear();
-  RecordSink sink{d.K.topRows(m.m1), m, d.entries};
+  detail::SlotRecordSink sink{d.K.topRows(m.m1), m, d.entries};
   for (const auto& c : m.constraints) detail::velocity_rows(m, c, d.q0, t, d.b, sink);
   for (int k = 0; k < dof; ++k) d.K(m.m1 + k, d.p_index[k]) = 1.0;
   check_finite_rows(d.b, m.velocity_row_labels, "velocity", t);
@@ -359,27 +343,8 @@ void inverse_dynamics_sample(const Model& m, InverseData& d, double t) {
   d.lambda = d.z.head(m.m1);
 
   // ---- reactions: direct from multipliers, or split at eliminated joints
-  for (int k = 0; k < m.n_reactions(); ++k)
-    if (m.reactions[k].row >= 0) d.reactions[k] = m.reactions[k].factor * d.lambda[m.reactions[k].row];
-  if (!m.merge_edges.empty()) {
-    // h = f + B u - M a - A^T lambda, per body slot
-    d.local_a *= -1.0;
-    for (int k = 0; k < m.n_inputs(); ++k)
-      for (const auto& [ref, coef] : m.inputs[k].terms)
-        if (ref.body >= 0) d.local_a[m.bodies[ref.body].offset + ref.slot] += coef * d.u[k];
-    for (const auto& e : d.entries) d.local_a[e.slot] -= e.value * d.lambda[e.row];
-    for (size_t k = 0; k < m.merge_edges.size(); ++k) {
-      const MergeEdge& e = m.merge_edges[k];
-      const int n = e.rotation ? 1 : 2;
-      const int base = m.bodies[e.child_body].offset + e.child_slot;
-      double* F = d.edge_force.data() + d.edge_offset[k];
-      for (int i = 0; i < n; ++i) {
-        F[i] = -d.local_a[base + i];
-        for (int ce : e.child_edges) F[i] += d.edge_force[d.edge_offset[ce] + i];
-        d.reactions[e.reaction + i] = e.sign * F[i];
-      }
-    }
-  }
+  detail::joint_reactions(m, d.entries, d.lambda, d.u, d.local_a, d.edge_force, d.edge_offset,
+                          d.reactions);
   d.q0_prev = d.q0;
   d.q1_prev = d.q1;
   d.a1_prev = d.a1;

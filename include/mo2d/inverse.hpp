@@ -13,6 +13,7 @@
 #include <string>
 #include <vector>
 
+#include "mo2d/detail/reactions.hpp"
 #include "mo2d/detail/small_lu.hpp"
 #include "mo2d/jet.hpp"
 #include "mo2d/model.hpp"
@@ -72,11 +73,7 @@ struct InverseData {
   Eigen::PartialPivLU<MatrixXd> lu_u;
   std::vector<double> edge_force;  // per merge edge: 2 (node) or 1 (rotation) values
   std::vector<int> edge_offset;
-  struct Entry {
-    int row, slot;
-    double value;
-  };
-  std::vector<Entry> entries;  // A entries attributed to body slots (for reactions)
+  std::vector<detail::SlotEntry> entries;  // A entries attributed to body slots (reactions)
   bool has_previous = false;
   double t_prev = 0;
   VectorXd q0_prev, q1_prev, a1_prev;
