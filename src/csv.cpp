@@ -62,6 +62,8 @@ std::string forward_csv(const ForwardResult& r) {
   for (const auto& l : r.coordinate_labels) s << "," << l;
   for (const auto& l : r.rate_labels) s << "," << l;
   for (const auto& l : r.rate_labels) s << "," << l << ".dot";
+  for (const auto& l : r.input_labels) s << "," << l;
+  for (const auto& l : r.reaction_labels) s << "," << l;
   s << ",energy.kinetic,energy.potential,work.inputs,energy.dissipated";
   s << ",residual.position,residual.velocity\n";
   for (int k = 0; k < r.time.size(); ++k) {
@@ -69,6 +71,8 @@ std::string forward_csv(const ForwardResult& r) {
     for (int j = 0; j < r.q0.cols(); ++j) s << "," << r.q0(k, j);
     for (int j = 0; j < r.q1.cols(); ++j) s << "," << r.q1(k, j);
     for (int j = 0; j < r.a1.cols(); ++j) s << "," << r.a1(k, j);
+    for (int j = 0; j < r.efforts.cols(); ++j) s << "," << r.efforts(k, j);
+    for (int j = 0; j < r.reactions.cols(); ++j) s << "," << r.reactions(k, j);
     s << "," << r.kinetic[k] << "," << r.potential[k] << "," << r.input_work[k] << ","
       << r.dissipated[k] << "," << r.residuals(k, 0) << "," << r.residuals(k, 1) << "\n";
   }

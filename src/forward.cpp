@@ -119,6 +119,11 @@ struct ForwardData {
   VectorXd b, c, f, Bu, u, lambda, rhs, a, psi, tmp0, tmp1, local, ap, red, dq0, dq1, r1;
   Eigen::LLT<MatrixXd> llt_H, llt_G0, llt_G1;
   detail::SmallLU lu_kkt, lu_K;
+  std::vector<detail::SlotEntry> entries;  // reactions: A entries attributed to body slots
+  std::vector<double> edge_force;
+  std::vector<int> edge_offset;
+  VectorXd reactions, la, w, lam_ls;
+  Eigen::LLT<MatrixXd> llt_AAt;
   Eigen::LLT<MatrixXd> llt_red;
   std::vector<int> independent;  // null space: independent quasi-velocities
   double alpha = 0;
@@ -154,6 +159,11 @@ struct ForwardData {
     dq0 = VectorXd::Zero(m.n0);
     dq1 = VectorXd::Zero(m.n1);
     r1 = VectorXd::Zero(m.m1);
+    edge_force.assign(detail::merge_edge_layout(m, edge_offset), 0.0);
+    reactions = VectorXd::Zero(m.n_reactions());
+    la = VectorXd::Zero(m.n_slots);
+    w = VectorXd::Zero(m.n1);
+    lam_ls = VectorXd::Zero(m.m1);
   }
 
   void inputs(double t) {
@@ -344,6 +354,29 @@ struct ForwardData {
     }
   }
 
+  // Reactions of a recorded state with accelerations `a` (least-squares multipliers of
+  // A^T lambda = B u - (M a - f); regularized where A loses rank).
+  void compute_reactions(double t, const VectorXd& q0, const VectorXd& q1) {
+    A.setZero();
+    entries.clear();
+    detail::SlotRecordSink sink{A, m, entries};
+    for (const auto& k : m.constraints) detail::velocity_rows(m, k, q0, t, b, sink);
+    body_inertia(m, a, la);
+    body_applied(m, q0, q1, t, local);
+    la -= local;  // M a - f, body-local
+    w.setZero();
+    scatter_local(m, la, w);
+    inputs(t);
+    if (m.m1 > 0) {
+      MatrixXd G = A * A.transpose();
+      G.diagonal().array() += 1e-14 * std::max(1.0, G.diagonal().maxCoeff());
+      llt_AAt.compute(G);
+      lam_ls.noalias() = A * (Bu - w);
+      llt_AAt.solveInPlace(lam_ls);
+    }
+    detail::joint_reactions(m, entries, lam_ls, u, la, edge_force, edge_offset, reactions);
+  }
+
   double pivot_indicator(double t, const VectorXd& q0) {
     velocity_jacobian(m, q0, t, A, b);
     if (m.m1 == 0) return 1.0;
@@ -365,6 +398,9 @@ struct Recorder {
     r.q1.row(k) = q1.transpose();
     d.accelerations(t, q0, q1, d.o.integrator == Integrator::baumgarte);
     r.a1.row(k) = d.a.transpose();
+    d.compute_reactions(t, q0, q1);
+    r.reactions.row(k) = d.reactions.transpose();
+    r.efforts.row(k) = d.u.transpose();
     r.kinetic[k] = kinetic_energy(m, q1);
     r.potential[k] = potential_energy(m, q0);
     r.input_work[k] = work;
@@ -671,7 +707,11 @@ ForwardResult forward_dynamics(const Model& m, const State& initial, const Forwa
   ForwardResult r;
   r.coordinate_labels = m.coordinate_labels;
   r.rate_labels = m.rate_labels;
+  for (const auto& in : m.inputs) r.input_labels.push_back(in.label);
+  for (const auto& re : m.reactions) r.reaction_labels.push_back(re.label);
   const int N = o.samples;
+  r.efforts = MatrixXd::Zero(N, m.n_inputs());
+  r.reactions = MatrixXd::Zero(N, m.n_reactions());
   r.time = VectorXd::Zero(N);
   r.q0 = MatrixXd::Zero(N, m.n0);
   r.q1 = MatrixXd::Zero(N, m.n1);
@@ -704,6 +744,8 @@ ForwardResult forward_dynamics(const Model& m, const State& initial, const Forwa
   r.input_work.conservativeResize(used);
   r.dissipated.conservativeResize(used);
   r.residuals.conservativeResize(used, Eigen::NoChange);
+  r.efforts.conservativeResize(used, Eigen::NoChange);
+  r.reactions.conservativeResize(used, Eigen::NoChange);
   r.stats = d.stats;
   return r;
 }
@@ -761,6 +803,11 @@ int ForwardResult::column(const std::string& l) const {
   auto it = std::find(coordinate_labels.begin(), coordinate_labels.end(), l);
   if (it == coordinate_labels.end()) throw Error("unknown coordinate '" + l + "'", l);
   return static_cast<int>(it - coordinate_labels.begin());
+}
+int ForwardResult::reaction(const std::string& l) const {
+  auto it = std::find(reaction_labels.begin(), reaction_labels.end(), l);
+  if (it == reaction_labels.end()) throw Error("unknown reaction '" + l + "'", l);
+  return static_cast<int>(it - reaction_labels.begin());
 }
 int ForwardResult::rate_column(const std::string& l) const {
   auto it = std::find(rate_labels.begin(), rate_labels.end(), l);

@@ -151,6 +151,15 @@ TEST(Forward, WhitworthInverseForwardRoundTrip) {
   for (int i = 0; i < r.time.size(); ++i)
     worst = std::max(worst, std::abs(r.q0(i, ia) - std::numbers::pi / 2 * r.time[i]));
   EXPECT_LE(worst, 1e-6);
+  // forward reactions agree with the inverse-dynamics reactions at the same instants (the
+  // trajectories agree to ~1e-9; reactions are O(1) N)
+  InverseOptions io2 = ex.run;
+  io2.samples = 161;
+  const InverseResult inv2 = inverse_dynamics(m, ex.motion, io2);
+  EXPECT_EQ(r.reaction_labels, inv2.reaction_labels);
+  EXPECT_LE((r.reactions - inv2.reactions).cwiseAbs().maxCoeff(),
+            1e-6 * inv2.reactions.cwiseAbs().maxCoeff());
+  EXPECT_LE((r.efforts - inv2.efforts).cwiseAbs().maxCoeff(), 1e-9);
   // the work of the input equals the change of kinetic energy (no gravity, no dissipation)
   const int last = static_cast<int>(r.time.size()) - 1;
   EXPECT_NEAR(r.input_work[last], r.kinetic[last] - r.kinetic[0], 1e-6);

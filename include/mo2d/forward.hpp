@@ -82,16 +82,20 @@ struct ForwardStats {
 };
 
 struct ForwardResult {
-  std::vector<std::string> coordinate_labels, rate_labels;
+  std::vector<std::string> coordinate_labels, rate_labels, input_labels, reaction_labels;
   VectorXd time;
   MatrixXd q0, q1, a1;         // samples x n0 / n1 / n1
   VectorXd kinetic, potential;  // energies (J); potential of gravity (datum y = 0) and springs
   VectorXd input_work;          // integral of the input power from t0 (J)
   VectorXd dissipated;          // integral of the damper power from t0 (J, >= 0)
   MatrixXd residuals;           // samples x 2: |psi|_inf, |A q1 - b|_inf
+  MatrixXd efforts;             // samples x inputs: the efforts applied
+  MatrixXd reactions;           // samples x reactions (Model::reactions), from least-squares
+                                // multipliers (not unique where the Jacobian loses rank)
   ForwardStats stats;
   int column(const std::string& coordinate_label) const;
   int rate_column(const std::string& rate_label) const;
+  int reaction(const std::string& reaction_label) const;
 };
 
 ForwardResult forward_dynamics(const Model& m, const State& initial, const ForwardOptions& options);
