@@ -660,8 +660,7 @@ Model build_model(const System& system, const BuildOptions& options) {
       adj[eb].push_back({ea, reaction_index[k], -1.0});
     }
     std::vector<bool> visited(n_elements, false);
-    std::vector<int> order;
-    std::function<int(int, int)> visit = [&](int e, int parent_edge) -> int {
+    std::function<void(int, int)> visit = [&](int e, int parent_edge) {
       visited[e] = true;
       std::vector<int> kids;
       for (const auto& a : adj[e]) {
@@ -679,7 +678,6 @@ Model build_model(const System& system, const BuildOptions& options) {
         kids.push_back(idx);
       }
       if (parent_edge >= 0) m.merge_edges[parent_edge].child_edges = kids;
-      return 0;
     };
     std::vector<int> roots;
     for (int e = 0; e < n_elements; ++e)
@@ -699,7 +697,6 @@ Model build_model(const System& system, const BuildOptions& options) {
       for (int& ce : e.child_edges) ce = static_cast<int>(first) + newpos[ce - first];
       m.merge_edges[first + newpos[k]] = e;
     }
-    (void)order;
   };
 
   std::vector<std::array<int, 2>> merged_pairs;
