@@ -29,10 +29,10 @@ for entry in "${mutations[@]}"; do
   cp "$file" "$file.orig"
   sed -i "$expr" "$file"
   if cmp -s "$file" "$file.orig"; then
-    echo "MUTATION NOT APPLIED: $name ($file)"; status=1; mv "$file.orig" "$file"; continue
+    echo "MUTATION NOT APPLIED: $name ($file)"; status=1; mv "$file.orig" "$file"; touch "$file"; continue
   fi
   if ! cmake --build "$work/build" -j"$(nproc)" --target mo2d_tests >/dev/null 2>&1; then
-    echo "[$name] does not compile"; mv "$file.orig" "$file"; continue
+    echo "[$name] does not compile"; mv "$file.orig" "$file"; touch "$file"; continue
   fi
   failed=$( { "$work/build/tests/mo2d_tests" --gtest_brief=1 2>&1 || true; } | sed -n 's/^\[  FAILED  \] \([A-Za-z0-9_.]*\).*/\1/p' | sort -u | tr '\n' ' ')
   if [ -z "$failed" ]; then
@@ -40,6 +40,8 @@ for entry in "${mutations[@]}"; do
   else
     echo "[$name] caught by: $failed"
   fi
+  # restore, and make it newer than its object file so that the next build drops the mutation
   mv "$file.orig" "$file"
+  touch "$file"
 done
 exit $status
