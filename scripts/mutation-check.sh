@@ -5,8 +5,10 @@
 set -euo pipefail
 src=$(cd "$(dirname "$0")/.." && pwd)
 work=${1:-/tmp/mo2d-mutations}
-mkdir -p "$work"
-rm -rf "$work/src-copy" && mkdir -p "$work/src-copy"
+# a fresh copy and a fresh build every time: tar restores the sources' old mtimes, so a build
+# directory kept from an earlier run would reuse objects compiled from mutated sources
+rm -rf "$work"
+mkdir -p "$work/src-copy"
 (cd "$src" && tar --exclude='./build*' --exclude=./out --exclude=./.git -cf - .) | tar -xf - -C "$work/src-copy"
 cd "$work/src-copy"
 cmake -S . -B "$work/build" -DCMAKE_BUILD_TYPE=Release -DMO2D_BUILD_BENCH=OFF >/dev/null
