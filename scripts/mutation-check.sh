@@ -23,7 +23,7 @@ mutations=(
   "gravity sign flipped|src/dynamics.cpp|s/b.mass \* m.gravity/-b.mass * m.gravity/"
   "rigid-body acceleration bias sign|src/constraints.hpp|s/const Vec2 e = w \* perp(node_velocity/const Vec2 e = -w * perp(node_velocity/"
   "slider acceleration bias dropped|src/constraints.hpp|s/const Vec2 e = (2 \* q1\[c.q\]/const Vec2 e = (0 * q1[c.q]/"
-  "reaction split sign|src/inverse.cpp|s/F\[i\] = -d.local_a\[base + i\];/F[i] = d.local_a[base + i];/"
+  "reaction split sign|src/reactions.cpp|s/F\[i\] = -local\[base + i\];/F[i] = local[base + i];/"
 )
 status=0
 for entry in "${mutations[@]}"; do
