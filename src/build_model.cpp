@@ -182,6 +182,18 @@ bool is_integer(double w) { return std::abs(w - std::round(w)) < 1e-12; }
 
 }  // namespace
 
+std::vector<std::string> Model::input_labels() const {
+  std::vector<std::string> out;
+  for (const auto& in : inputs) out.push_back(in.label);
+  return out;
+}
+
+std::vector<std::string> Model::reaction_labels() const {
+  std::vector<std::string> out;
+  for (const auto& r : reactions) out.push_back(r.label);
+  return out;
+}
+
 int Model::coordinate(const std::string& label) const {
   auto it = coordinate_index.find(label);
   if (it == coordinate_index.end() && fixed_coordinates.count(label))

@@ -32,23 +32,39 @@ void write_file_atomically(const std::string& path, const std::string& content) 
   }
 }
 
-std::string inverse_csv(const InverseResult& r) {
-  std::ostringstream s;
-  s.precision(17);
+namespace {
+
+// Columns shared by inverse and forward results: t, coordinates, quasi-velocities, their
+// derivatives (label + ".dot"), efforts, reactions.
+template <class Result>
+void common_header(std::ostringstream& s, const Result& r) {
   s << "t";
   for (const auto& l : r.coordinate_labels) s << "," << l;
   for (const auto& l : r.rate_labels) s << "," << l;
   for (const auto& l : r.rate_labels) s << "," << l << ".dot";
   for (const auto& l : r.input_labels) s << "," << l;
   for (const auto& l : r.reaction_labels) s << "," << l;
+}
+
+template <class Result>
+void common_row(std::ostringstream& s, const Result& r, int k) {
+  s << r.time[k];
+  for (int j = 0; j < r.q0.cols(); ++j) s << "," << r.q0(k, j);
+  for (int j = 0; j < r.q1.cols(); ++j) s << "," << r.q1(k, j);
+  for (int j = 0; j < r.a1.cols(); ++j) s << "," << r.a1(k, j);
+  for (int j = 0; j < r.efforts.cols(); ++j) s << "," << r.efforts(k, j);
+  for (int j = 0; j < r.reactions.cols(); ++j) s << "," << r.reactions(k, j);
+}
+
+}  // namespace
+
+std::string inverse_csv(const InverseResult& r) {
+  std::ostringstream s;
+  s.precision(17);
+  common_header(s, r);
   s << ",residual.position,residual.velocity,residual.acceleration\n";
   for (int k = 0; k < r.time.size(); ++k) {
-    s << r.time[k];
-    for (int j = 0; j < r.q0.cols(); ++j) s << "," << r.q0(k, j);
-    for (int j = 0; j < r.q1.cols(); ++j) s << "," << r.q1(k, j);
-    for (int j = 0; j < r.a1.cols(); ++j) s << "," << r.a1(k, j);
-    for (int j = 0; j < r.efforts.cols(); ++j) s << "," << r.efforts(k, j);
-    for (int j = 0; j < r.reactions.cols(); ++j) s << "," << r.reactions(k, j);
+    common_row(s, r, k);
     for (int j = 0; j < 3; ++j) s << "," << r.residuals(k, j);
     s << "\n";
   }
@@ -58,21 +74,11 @@ std::string inverse_csv(const InverseResult& r) {
 std::string forward_csv(const ForwardResult& r) {
   std::ostringstream s;
   s.precision(17);
-  s << "t";
-  for (const auto& l : r.coordinate_labels) s << "," << l;
-  for (const auto& l : r.rate_labels) s << "," << l;
-  for (const auto& l : r.rate_labels) s << "," << l << ".dot";
-  for (const auto& l : r.input_labels) s << "," << l;
-  for (const auto& l : r.reaction_labels) s << "," << l;
+  common_header(s, r);
   s << ",energy.kinetic,energy.potential,work.inputs,energy.dissipated";
   s << ",residual.position,residual.velocity\n";
   for (int k = 0; k < r.time.size(); ++k) {
-    s << r.time[k];
-    for (int j = 0; j < r.q0.cols(); ++j) s << "," << r.q0(k, j);
-    for (int j = 0; j < r.q1.cols(); ++j) s << "," << r.q1(k, j);
-    for (int j = 0; j < r.a1.cols(); ++j) s << "," << r.a1(k, j);
-    for (int j = 0; j < r.efforts.cols(); ++j) s << "," << r.efforts(k, j);
-    for (int j = 0; j < r.reactions.cols(); ++j) s << "," << r.reactions(k, j);
+    common_row(s, r, k);
     s << "," << r.kinetic[k] << "," << r.potential[k] << "," << r.input_work[k] << ","
       << r.dissipated[k] << "," << r.residuals(k, 0) << "," << r.residuals(k, 1) << "\n";
   }

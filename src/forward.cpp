@@ -707,8 +707,8 @@ ForwardResult forward_dynamics(const Model& m, const State& initial, const Forwa
   ForwardResult r;
   r.coordinate_labels = m.coordinate_labels;
   r.rate_labels = m.rate_labels;
-  for (const auto& in : m.inputs) r.input_labels.push_back(in.label);
-  for (const auto& re : m.reactions) r.reaction_labels.push_back(re.label);
+  r.input_labels = m.input_labels();
+  r.reaction_labels = m.reaction_labels();
   const int N = o.samples;
   r.efforts = MatrixXd::Zero(N, m.n_inputs());
   r.reactions = MatrixXd::Zero(N, m.n_reactions());

@@ -359,8 +359,8 @@ InverseResult inverse_dynamics(const Model& m, std::span<const Prescribed> presc
   InverseResult r;
   r.coordinate_labels = m.coordinate_labels;
   r.rate_labels = m.rate_labels;
-  for (const auto& in : m.inputs) r.input_labels.push_back(in.label);
-  for (const auto& re : m.reactions) r.reaction_labels.push_back(re.label);
+  r.input_labels = m.input_labels();
+  r.reaction_labels = m.reaction_labels();
   r.time.resize(N);
   r.q0.resize(N, m.n0);
   r.q1.resize(N, m.n1);

@@ -26,8 +26,8 @@ InverseResult inverse_dynamics_lagrange(const Model& m, std::span<const Prescrib
   InverseResult r;
   r.coordinate_labels = m.coordinate_labels;
   r.rate_labels = m.rate_labels;
-  for (const auto& in : m.inputs) r.input_labels.push_back(in.label);
-  for (const auto& re : m.reactions) r.reaction_labels.push_back(re.label);
+  r.input_labels = m.input_labels();
+  r.reaction_labels = m.reaction_labels();
   const int S = options.samples;
   r.time.resize(S);
   r.q0.resize(S, m.n0);

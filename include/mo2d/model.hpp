@@ -200,6 +200,8 @@ struct Model {
   std::vector<TreeNode> tree;  // tree[0] is the root
   Eigen::VectorXd q0;          // initial configuration (assembled)
 
+  std::vector<std::string> input_labels() const;     // Model::inputs[k].label
+  std::vector<std::string> reaction_labels() const;  // Model::reactions[k].label
   int coordinate(const std::string& label) const;  // throws Error naming the label
   int rate(const std::string& label) const;
 };
