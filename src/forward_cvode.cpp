@@ -1,0 +1,213 @@
+// Forward dynamics: SUNDIALS CVODE driver (BDF with projection, Adams).
+#include <cvode/cvode.h>
+#include <cvode/cvode_proj.h>
+#include <nvector/nvector_serial.h>
+#include <sundials/sundials_context.h>
+#include <sunlinsol/sunlinsol_dense.h>
+#include <sunmatrix/sunmatrix_dense.h>
+#include <sunnonlinsol/sunnonlinsol_fixedpoint.h>
+
+#include <Eigen/Cholesky>
+#include <algorithm>
+#include <memory>
+#include <sstream>
+
+#include "forward_data.hpp"
+#include "mo2d/dynamics.hpp"
+#include "mo2d/error.hpp"
+#include "mo2d/kinematics.hpp"
+
+namespace mo2d::detail {
+namespace {
+
+struct CvodeUser {
+  const Model* m;
+  ForwardData* d;
+  VectorXd q0, q1;
+  bool baumgarte = false;
+  std::string last_error;  // message of the last failed right-hand side evaluation
+};
+
+int cv_rhs(realtype t, N_Vector y, N_Vector ydot, void* user) {
+  auto* u = static_cast<CvodeUser*>(user);
+  const Model& m = *u->m;
+  const double* yd = N_VGetArrayPointer(y);
+  double* out = N_VGetArrayPointer(ydot);
+  u->q0 = Eigen::Map<const VectorXd>(yd, m.n0);
+  u->q1 = Eigen::Map<const VectorXd>(yd + m.n0, m.n1);
+  try {
+    u->d->accelerations(t, u->q0, u->q1, u->baumgarte);
+  } catch (const Error& e) {
+    u->last_error = e.what();
+    return 1;  // recoverable: CVODE retries with a smaller step
+  }
+  Eigen::Map<VectorXd>(out, m.n0) = u->q1.head(m.n0);
+  Eigen::Map<VectorXd>(out + m.n0, m.n1) = u->d->a;
+
+  out[m.n0 + m.n1] = u->d->Bu.dot(u->q1);
+  out[m.n0 + m.n1 + 1] = damping_power(m, u->q0, u->q1);
+  return 0;
+}
+
+int cv_proj(realtype t, N_Vector ycur, N_Vector corr, realtype eps, N_Vector err, void* user) {
+  auto* u = static_cast<CvodeUser*>(user);
+  const Model& m = *u->m;
+  ForwardData& d = *u->d;
+  const double* y = N_VGetArrayPointer(ycur);
+  double* c = N_VGetArrayPointer(corr);
+  VectorXd q0 = Eigen::Map<const VectorXd>(y, m.n0),
+           q1 = Eigen::Map<const VectorXd>(y + m.n0, m.n1);
+  const VectorXd q0s = q0, q1s = q1;
+  // Project well below the solver's own tolerance: CVODE measures the correction in its error
+  // weights (1 / (rtol |y| + atol)), so a projection left at a looser level than atol makes every
+  // step look inaccurate and drives the step size to zero. (eps: CVODE's projection tolerance.)
+  (void)eps;
+  const double tol = std::max(1e-3 * d.o.atol, 4e-16 * m.scale);
+  d.project(t, q0, q1, tol, tol);
+  Eigen::Map<VectorXd>(c, m.n0) = q0 - q0s;
+  Eigen::Map<VectorXd>(c + m.n0, m.n1) = q1 - q1s;
+
+  c[m.n0 + m.n1] = c[m.n0 + m.n1 + 1] = 0;
+  if (err) {  // project the error estimate on the tangent spaces
+    double* e = N_VGetArrayPointer(err);
+    Eigen::Map<VectorXd> e0(e, m.n0), e1(e + m.n0, m.n1);
+    if (m.m0) {
+      position_jacobian(m, q0, t, d.psi, d.Psi);
+      MatrixXd G = d.Psi * d.Psi.transpose();
+      G.diagonal().array() += 1e-13 * std::max(1.0, G.diagonal().maxCoeff());
+      e0 -= d.Psi.transpose() * G.llt().solve(d.Psi * e0);
+    }
+    if (m.m1) {
+      velocity_jacobian(m, q0, t, d.A, d.b);
+      MatrixXd G = d.A * d.A.transpose();
+      G.diagonal().array() += 1e-13 * std::max(1.0, G.diagonal().maxCoeff());
+      e1 -= d.A.transpose() * G.llt().solve(d.A * e1);
+    }
+  }
+  return 0;
+}
+
+int cv_root(realtype t, N_Vector y, realtype* g, void* user) {
+  auto* u = static_cast<CvodeUser*>(user);
+  const Model& m = *u->m;
+  const double* yd = N_VGetArrayPointer(y);
+  const VectorXd q0 = Eigen::Map<const VectorXd>(yd, m.n0);
+  const VectorXd q1 = Eigen::Map<const VectorXd>(yd + m.n0, m.n1);
+  g[0] = u->d->o.stop_when(t, q0, q1);
+  return 0;
+}
+
+// CVODE's messages go to the run's warnings, not to stderr.
+void cv_error_handler(int code, const char* module, const char* function, char* msg, void* data) {
+  auto* stats = static_cast<ForwardStats*>(data);
+  if (stats->warnings.size() < 20)
+    stats->warnings.push_back(std::string(code < 0 ? "error" : "warning") + " in " + module + " " +
+                              function + ": " + msg);
+}
+
+struct SundialsDeleter {
+  void operator()(SUNContext c) const { SUNContext_Free(&c); }
+};
+
+void check_flag(int flag, const char* call, double t) {
+  if (flag < 0)
+    throw Error(std::string("SUNDIALS ") + call + " failed (flag " + std::to_string(flag) +
+                    ") at t = " + fmt(t),
+                call, t);
+}
+
+}  // namespace
+
+void run_cvode(const Model& m, ForwardData& d, const State& s0, const ForwardOptions& o,
+               Recorder& rec) {
+  const int n = m.n0 + m.n1 + 2;  // q0, q1, input work, dissipated energy
+  SUNContext ctx = nullptr;
+  check_flag(SUNContext_Create(nullptr, &ctx), "SUNContext_Create", o.t0);
+  std::unique_ptr<std::remove_pointer_t<SUNContext>, SundialsDeleter> ctx_guard(ctx);
+  N_Vector y = N_VNew_Serial(n, ctx);
+  std::unique_ptr<std::remove_pointer_t<N_Vector>, void (*)(N_Vector)> y_guard(y, N_VDestroy);
+  N_Vector atol = N_VNew_Serial(n, ctx);
+  std::unique_ptr<std::remove_pointer_t<N_Vector>, void (*)(N_Vector)> a_guard(atol, N_VDestroy);
+  double* yd = N_VGetArrayPointer(y);
+  Eigen::Map<VectorXd>(yd, m.n0) = s0.q0;
+  Eigen::Map<VectorXd>(yd + m.n0, m.n1) = s0.q1;
+  yd[n - 2] = yd[n - 1] = 0;
+  N_VConst(o.atol, atol);
+  // the quadratures are integrated to the state's accuracy but do not control the step
+  N_VGetArrayPointer(atol)[n - 2] = N_VGetArrayPointer(atol)[n - 1] = 1e6;
+  const bool bdf = o.integrator == Integrator::cvode_bdf;
+  void* mem = CVodeCreate(bdf ? CV_BDF : CV_ADAMS, ctx);
+  if (!mem) throw Error("SUNDIALS CVodeCreate failed", "CVodeCreate", o.t0);
+  std::unique_ptr<void, void (*)(void*)> mem_guard(mem, [](void* p) { CVodeFree(&p); });
+  CvodeUser user{&m, &d, VectorXd(m.n0), VectorXd(m.n1), false, {}};
+  check_flag(CVodeInit(mem, cv_rhs, o.t0, y), "CVodeInit", o.t0);
+  check_flag(CVodeSetUserData(mem, &user), "CVodeSetUserData", o.t0);
+  check_flag(CVodeSetErrHandlerFn(mem, cv_error_handler, &d.stats), "CVodeSetErrHandlerFn", o.t0);
+  check_flag(CVodeSVtolerances(mem, o.rtol, atol), "CVodeSVtolerances", o.t0);
+  check_flag(CVodeSetMaxNumSteps(mem, o.max_steps), "CVodeSetMaxNumSteps", o.t0);
+  SUNMatrix A = nullptr;
+  SUNLinearSolver LS = nullptr;
+  SUNNonlinearSolver NLS = nullptr;
+  std::unique_ptr<std::remove_pointer_t<SUNMatrix>, void (*)(SUNMatrix)> A_guard(nullptr,
+                                                                                 SUNMatDestroy);
+  std::unique_ptr<std::remove_pointer_t<SUNLinearSolver>, int (*)(SUNLinearSolver)> LS_guard(
+      nullptr, SUNLinSolFree);
+  std::unique_ptr<std::remove_pointer_t<SUNNonlinearSolver>, int (*)(SUNNonlinearSolver)> NLS_guard(
+      nullptr, SUNNonlinSolFree);
+  if (bdf) {
+    A = SUNDenseMatrix(n, n, ctx);
+    A_guard.reset(A);
+    LS = SUNLinSol_Dense(y, A, ctx);
+    LS_guard.reset(LS);
+    check_flag(CVodeSetLinearSolver(mem, LS, A), "CVodeSetLinearSolver", o.t0);
+    check_flag(CVodeSetProjFn(mem, cv_proj), "CVodeSetProjFn", o.t0);
+  } else {
+    NLS = SUNNonlinSol_FixedPoint(y, 0, ctx);
+    NLS_guard.reset(NLS);
+    check_flag(CVodeSetNonlinearSolver(mem, NLS), "CVodeSetNonlinearSolver", o.t0);
+  }
+  if (o.stop_when) check_flag(CVodeRootInit(mem, 1, cv_root), "CVodeRootInit", o.t0);
+  VectorXd q0 = s0.q0, q1 = s0.q1;
+  rec.record(o.t0, q0, q1, 0.0, 0.0);
+  double t = o.t0;
+  for (int k = 1; k < o.samples; ++k) {
+    const double t_out = o.t0 + (o.t1 - o.t0) * k / (o.samples - 1);
+    check_flag(CVodeSetStopTime(mem, t_out), "CVodeSetStopTime", t);
+    int flag = CVode(mem, t_out, y, &t, CV_NORMAL);
+    if (flag < 0) {
+      std::ostringstream s;
+      s << "forward dynamics of '" << m.name << "' stopped at t = " << fmt(t)
+        << " s: CVODE could not continue (flag " << flag << ")";
+      if (!user.last_error.empty()) s << " after: " << user.last_error;
+      q0 = Eigen::Map<const VectorXd>(yd, m.n0);
+      const double piv = d.pivot_indicator(t, q0);
+      if (piv < o.singular_warning)
+        s << "; the constraint Jacobian is near-singular there (pivot ratio " << fmt(piv) << ")";
+      s << "; configuration:";
+      for (int j = 0; j < std::min(m.n0, 12); ++j)
+        s << " " << m.coordinate_labels[j] << "=" << fmt(q0[j]);
+      throw Error(s.str(), m.name, t);
+    }
+    q0 = Eigen::Map<const VectorXd>(yd, m.n0);
+    q1 = Eigen::Map<const VectorXd>(yd + m.n0, m.n1);
+    rec.record(t, q0, q1, yd[n - 2], yd[n - 1]);
+    if (flag == CV_ROOT_RETURN) {
+      d.stats.stopped_by_event = true;
+      break;
+    }
+  }
+  d.stats.t_end = t;
+  long v = 0;
+  CVodeGetNumSteps(mem, &v);
+  d.stats.steps = v;
+  CVodeGetNumErrTestFails(mem, &v);
+  d.stats.error_test_failures = v;
+  if (bdf) {
+    CVodeGetNumLinSolvSetups(mem, &v);
+    d.stats.factorizations = v;
+    CVodeGetNumProjEvals(mem, &v);
+    d.stats.projections = v;
+  }
+}
+
+}  // namespace mo2d::detail

@@ -1,0 +1,304 @@
+// Forward dynamics, one evaluation: accelerations in three formulations, projection on the
+// constraint manifolds, reactions of a recorded state, and the output recorder.
+#include "forward_data.hpp"
+
+#include <Eigen/QR>
+#include <algorithm>
+#include <cmath>
+#include <sstream>
+
+#include "constraints.hpp"
+#include "mo2d/dynamics.hpp"
+#include "mo2d/error.hpp"
+#include "mo2d/kinematics.hpp"
+
+namespace mo2d::detail {
+
+std::string fmt(double v) {
+  std::ostringstream s;
+  s.precision(6);
+  s << v;
+  return s.str();
+}
+
+ForwardData::ForwardData(const Model& model, const ForwardOptions& opt) : m(model), o(opt) {
+  M = mass_matrix(m);
+  B = input_matrix(m);
+  A = MatrixXd::Zero(m.m1, m.n1);
+  Psi = MatrixXd::Zero(m.m0, m.n0);
+  H = MatrixXd::Zero(m.n1, m.n1);
+  b = c = VectorXd::Zero(m.m1);
+  f = Bu = rhs = a = ap = tmp0 = tmp1 = VectorXd::Zero(m.n1);
+  u = VectorXd::Zero(m.n_inputs());
+  lambda = VectorXd::Zero(m.m1);
+  psi = VectorXd::Zero(m.m0);
+  local = VectorXd::Zero(m.n_slots);
+  KKT = MatrixXd::Zero(m.n1 + m.m1, m.n1 + m.m1);
+  lu_kkt = detail::SmallLU(m.n1 + m.m1);
+  K = MatrixXd::Zero(m.n1, m.n1);
+  lu_K = detail::SmallLU(m.n1);
+  S = MatrixXd::Zero(m.n1, m.dof);
+  CtMC = MatrixXd::Zero(m.dof, m.dof);
+  red = VectorXd::Zero(m.dof);
+  // penalty: large against the mass, as in Bayo & Garcia de Jalon's augmented Lagrangian
+  const double mscale = std::max(M.diagonal().maxCoeff(), 1e-12);
+  alpha = o.penalty > 0 ? o.penalty : 1e7 * mscale;
+  // position metric: the mass of the node coordinates, kept definite for massless nodes
+  M0 = M.topLeftCorner(m.n0, m.n0);
+  M0.diagonal().array() += 1e-6 * mscale;
+  W0 = MatrixXd::Zero(m.n0, m.n0);
+  dq0 = VectorXd::Zero(m.n0);
+  dq1 = VectorXd::Zero(m.n1);
+  r1 = VectorXd::Zero(m.m1);
+  edge_force.assign(detail::merge_edge_layout(m, edge_offset), 0.0);
+  reactions = VectorXd::Zero(m.n_reactions());
+  la = VectorXd::Zero(m.n_slots);
+  w = VectorXd::Zero(m.n1);
+  lam_ls = VectorXd::Zero(m.m1);
+}
+
+void ForwardData::inputs(double t) {
+  for (int k = 0; k < m.n_inputs(); ++k) {
+    const bool has = k < static_cast<int>(o.efforts.size()) && o.efforts[k];
+    u[k] = has ? o.efforts[k](t) : 0.0;
+    if (!std::isfinite(u[k]))
+      throw Error("effort of input '" + m.inputs[k].label + "' is not finite at t = " + fmt(t),
+                  m.inputs[k].label, t);
+  }
+  Bu.noalias() = B * u;
+}
+
+void ForwardData::choose_independent(const VectorXd& q0, double t) {
+  velocity_jacobian(m, q0, t, A, b);
+  Eigen::ColPivHouseholderQR<MatrixXd> qr(A);
+  const auto& p = qr.colsPermutation().indices();
+  independent.assign(p.data() + (m.n1 - m.dof), p.data() + m.n1);
+}
+
+void ForwardData::accelerations(double t, const VectorXd& q0, const VectorXd& q1, bool baumgarte) {
+  ++stats.rhs_evaluations;
+  velocity_jacobian(m, q0, t, A, b);
+  acceleration_rhs(m, q0, q1, t, c);
+  if (baumgarte) c.noalias() -= o.baumgarte_alpha * (A * q1 - b);
+  body_applied(m, q0, q1, t, local);
+  f.setZero();
+  scatter_local(m, local, f);
+  inputs(t);
+  rhs = f + Bu;
+  switch (o.formulation) {
+    case Formulation::augmented_lagrangian: {
+      H = M;
+      H.noalias() += alpha * A.transpose() * A;
+      llt_H.compute(H);
+      ++stats.factorizations;
+      if (llt_H.info() != Eigen::Success)
+        throw Error("forward dynamics of '" + m.name +
+                        "': the mass matrix is not positive on "
+                        "the mechanism's motions at t = " +
+                        fmt(t) + " (a body without mass or inertia?)",
+                    m.name, t);
+      // Iterate in residual form (warm start: the previous multipliers): with
+      // r1 = f + B u - M a - A^T lambda and r2 = c - A a,  H da = r1 + alpha A^T r2,
+      // a += da, lambda -= alpha (c - A a). Being written on the true residuals, the
+      // iteration also refines away the rounding of the (ill-conditioned) H solves.
+      // Iterate in residual form, warm-started from the last multipliers (reset if not
+      // finite): r1 = f + B u - M a - A^T lambda, r2 = c - A a; H da = r1 + alpha A^T r2,
+      // a += da, lambda -= alpha (c - A a). Written on the true residuals, the iteration also
+      // refines away the rounding of the (ill-conditioned) H solves. It stops when converged or
+      // when the residual no longer halves: at the rounding floor, or where the Jacobian loses
+      // rank -- there the penalty regularizes the constraint instead of enforcing it with
+      // unbounded multipliers.
+      if (!lambda.allFinite()) lambda.setZero();
+      a.setZero();
+      double prev = INFINITY;
+      int it = 0;
+      // scale of r2: |c|, plus a constant term so that a state at rest (c = 0) is judged on the
+      // absolute residual
+      const double c_floor = 0.1 * (1 + A.cwiseAbs().maxCoeff());
+      for (; it < 40; ++it) {
+        tmp0 = rhs;
+        tmp0.noalias() -= M * a;
+        tmp1.noalias() = A.transpose() * lambda;
+        tmp0 -= tmp1;  // r1
+        ap.head(m.m1) = c;
+        ap.head(m.m1).noalias() -= A * a;  // r2
+        const double s1 = rhs.lpNorm<Eigen::Infinity>() + tmp1.lpNorm<Eigen::Infinity>() + 1e-300;
+        const double s2 = c.lpNorm<Eigen::Infinity>() + c_floor;
+        const double e = std::max(tmp0.lpNorm<Eigen::Infinity>() / s1,
+                                  ap.head(m.m1).lpNorm<Eigen::Infinity>() / s2);
+        if (it > 0 && (e <= 1e-14 || e > 0.5 * prev)) break;
+        prev = e;
+        tmp0.noalias() += alpha * A.transpose() * ap.head(m.m1);
+        llt_H.solveInPlace(tmp0);
+        a += tmp0;
+        ap.head(m.m1) = c;
+        ap.head(m.m1).noalias() -= A * a;
+        lambda.noalias() -= alpha * ap.head(m.m1);
+      }
+      stats.solver_iterations += it;
+      if (!lambda.allFinite()) lambda.setZero();
+      break;
+    }
+    case Formulation::lagrange: {
+      KKT.setZero();
+      KKT.topLeftCorner(m.n1, m.n1) = M;
+      KKT.topRightCorner(m.n1, m.m1) = A.transpose();
+      KKT.bottomLeftCorner(m.m1, m.n1) = A;
+      ++stats.factorizations;
+      const double r = lu_kkt.compute(KKT);
+      if (r < 1e-14)
+        throw Error("forward dynamics of '" + m.name + "': [M A^T; A 0] is singular at t = " +
+                        fmt(t) + " s (singular configuration; use the augmented Lagrangian)",
+                    m.name, t);
+      VectorXd& x = tmp1;
+      x.resize(m.n1 + m.m1);
+      x.head(m.n1) = rhs;
+      x.tail(m.m1) = c;
+      lu_kkt.solve_in_place(x);
+      a = x.head(m.n1);
+      lambda = x.tail(m.m1);
+      break;
+    }
+    case Formulation::null_space: {
+      if (independent.empty()) choose_independent(q0, t);
+      auto build = [&] {
+        K.setZero();
+        K.topRows(m.m1) = A;
+        for (int k = 0; k < m.dof; ++k) K(m.m1 + k, independent[k]) = 1.0;
+        ++stats.factorizations;
+        return lu_K.compute(K);
+      };
+      if (build() < 1e-8) {  // partition switch: re-choose the independent variables
+        choose_independent(q0, t);
+        velocity_jacobian(m, q0, t, A, b);
+        if (build() < 1e-14)
+          throw Error("forward dynamics of '" + m.name + "': no independent coordinates at t = " +
+                          fmt(t) + " s (singular configuration; use the augmented Lagrangian)",
+                      m.name, t);
+      }
+      // a = a_p + C x with a_p = K^-1 [c; 0], C = K^-1 [0; I]; C^T M C x = C^T (f + B u - M a_p)
+      ap.setZero();
+      ap.head(m.m1) = c;
+      lu_K.solve_in_place(ap);
+      for (int k = 0; k < m.dof; ++k) {
+        auto col = S.col(k);
+        col.setZero();
+        col[m.m1 + k] = 1.0;
+        lu_K.solve_in_place(col);
+      }
+      CtMC.noalias() = S.transpose() * M * S;
+      red.noalias() = S.transpose() * (rhs - M * ap);
+      llt_red.compute(CtMC);
+      if (llt_red.info() != Eigen::Success)
+        throw Error("forward dynamics of '" + m.name +
+                        "': the reduced mass matrix C^T M C is "
+                        "not positive definite at t = " +
+                        fmt(t) + " (a body without mass?)",
+                    m.name, t);
+      llt_red.solveInPlace(red);
+      a = ap;
+      a.noalias() += S * red;
+      break;
+    }
+  }
+  if (!q0.allFinite() || !q1.allFinite())
+    throw Error("forward dynamics of '" + m.name +
+                    "': the integrator produced a non-finite state "
+                    "at t = " +
+                    fmt(t),
+                m.name, t);
+  if (!a.allFinite())
+    throw Error("forward dynamics of '" + m.name + "': non-finite accelerations at t = " + fmt(t),
+                m.name, t);
+}
+
+void ForwardData::project(double t, VectorXd& q0, VectorXd& q1, double tol_pos, double tol_vel) {
+  ++stats.projections;
+  if (m.m0 > 0) {
+    for (int it = 0; it < 6; ++it) {
+      position_jacobian(m, q0, t, psi, Psi);
+      if (psi.lpNorm<Eigen::Infinity>() <= tol_pos) break;
+      W0 = M0;
+      W0.noalias() += alpha * Psi.transpose() * Psi;
+      llt_G0.compute(W0);
+      dq0.noalias() = -alpha * Psi.transpose() * psi;
+      llt_G0.solveInPlace(dq0);
+      q0 += dq0;
+    }
+  }
+  if (m.m1 == 0) return;
+  velocity_jacobian(m, q0, t, A, b);
+  bool factored = false;
+  for (int it = 0; it < 6; ++it) {
+    r1.noalias() = A * q1;
+    r1 -= b;
+    if (r1.lpNorm<Eigen::Infinity>() <= tol_vel) break;
+    if (!factored) {
+      H = M;
+      H.noalias() += alpha * A.transpose() * A;
+      llt_G1.compute(H);
+      factored = true;
+    }
+    dq1.noalias() = -alpha * A.transpose() * r1;
+    llt_G1.solveInPlace(dq1);
+    q1 += dq1;
+  }
+}
+
+void ForwardData::compute_reactions(double t, const VectorXd& q0, const VectorXd& q1) {
+  A.setZero();
+  entries.clear();
+  detail::SlotRecordSink sink{A, m, entries};
+  for (const auto& k : m.constraints) detail::velocity_rows(m, k, q0, t, b, sink);
+  body_inertia(m, a, la);
+  body_applied(m, q0, q1, t, local);
+  la -= local;  // M a - f, body-local
+  w.setZero();
+  scatter_local(m, la, w);
+  inputs(t);
+  if (m.m1 > 0) {
+    MatrixXd G = A * A.transpose();
+    G.diagonal().array() += 1e-14 * std::max(1.0, G.diagonal().maxCoeff());
+    llt_AAt.compute(G);
+    lam_ls.noalias() = A * (Bu - w);
+    llt_AAt.solveInPlace(lam_ls);
+  }
+  detail::joint_reactions(m, entries, lam_ls, u, la, edge_force, edge_offset, reactions);
+}
+
+double ForwardData::pivot_indicator(double t, const VectorXd& q0) {
+  velocity_jacobian(m, q0, t, A, b);
+  if (m.m1 == 0) return 1.0;
+  MatrixXd G = A * A.transpose();
+  detail::SmallLU lu(m.m1);
+  return lu.compute(G);
+}
+
+void Recorder::record(double t, const VectorXd& q0, const VectorXd& q1, double work,
+                      double dissipated) {
+  r.time[k] = t;
+  r.q0.row(k) = q0.transpose();
+  r.q1.row(k) = q1.transpose();
+  d.accelerations(t, q0, q1, d.o.integrator == Integrator::baumgarte);
+  r.a1.row(k) = d.a.transpose();
+  d.compute_reactions(t, q0, q1);
+  r.reactions.row(k) = d.reactions.transpose();
+  r.efforts.row(k) = d.u.transpose();
+  r.kinetic[k] = kinetic_energy(m, q1);
+  r.potential[k] = potential_energy(m, q0);
+  r.input_work[k] = work;
+  r.dissipated[k] = dissipated;
+  VectorXd psi(m.m0);
+  position_residual(m, q0, t, psi);
+  r.residuals(k, 0) = m.m0 ? psi.lpNorm<Eigen::Infinity>() : 0.0;
+  velocity_jacobian(m, q0, t, d.A, d.b);
+  r.residuals(k, 1) = m.m1 ? (d.A * q1 - d.b).lpNorm<Eigen::Infinity>() : 0.0;
+  const double piv = d.pivot_indicator(t, q0);
+  d.stats.min_pivot_ratio = std::min(d.stats.min_pivot_ratio, piv);
+  if (piv < d.o.singular_warning && d.stats.warnings.size() < 20)
+    d.stats.warnings.push_back("near-singular configuration at t = " + fmt(t) +
+                               " s (constraint Jacobian pivot ratio " + fmt(piv) + ")");
+  ++k;
+}
+
+}  // namespace mo2d::detail

@@ -1,0 +1,72 @@
+#pragma once
+// Internal to the forward-dynamics implementation: the workspace of one run (accelerations,
+// projection, reactions), the output recorder, and the integrator drivers (one file each).
+#include <Eigen/Cholesky>
+#include <string>
+#include <vector>
+
+#include "mo2d/detail/reactions.hpp"
+#include "mo2d/detail/small_lu.hpp"
+#include "mo2d/forward.hpp"
+
+namespace mo2d::detail {
+
+std::string fmt(double v);  // 6 significant digits, for messages
+
+// Workspace of one forward run.
+struct ForwardData {
+  const Model& m;
+  const ForwardOptions& o;
+  MatrixXd M, M0, W0, B, A, Psi, H, KKT, K, S, CtMC;
+  VectorXd b, c, f, Bu, u, lambda, rhs, a, psi, tmp0, tmp1, local, ap, red, dq0, dq1, r1;
+  Eigen::LLT<MatrixXd> llt_H, llt_G0, llt_G1;
+  detail::SmallLU lu_kkt, lu_K;
+  std::vector<detail::SlotEntry> entries;  // reactions: A entries attributed to body slots
+  std::vector<double> edge_force;
+  std::vector<int> edge_offset;
+  VectorXd reactions, la, w, lam_ls;
+  Eigen::LLT<MatrixXd> llt_AAt;
+  Eigen::LLT<MatrixXd> llt_red;
+  std::vector<int> independent;  // null space: independent quasi-velocities
+  double alpha = 0;
+  ForwardStats stats;
+  double last_pivot = 1;
+
+  ForwardData(const Model& model, const ForwardOptions& opt);
+
+  void inputs(double t);
+
+  void choose_independent(const VectorXd& q0, double t);
+
+  // a1 = accelerations at (t, q0, q1). With baumgarte, A a = c - alpha (A q1 - b).
+  void accelerations(double t, const VectorXd& q0, const VectorXd& q1, bool baumgarte);
+
+  // Project q0 on psi = 0 and q1 on A q1 = b, mass-orthogonally and regularized by the
+  // augmented-Lagrangian penalty (Bayo, Cuadrado): (W + alpha J^T J) dx = -alpha J^T r, iterated.
+  // In regular directions each iteration divides the residual by ~alpha sigma^2 / m (~1e7); in a
+  // direction where the Jacobian loses rank (sigma -> 0) the correction vanishes instead of
+  // blowing up as 1/sigma, so a state near a singular position is not thrown onto another branch.
+  void project(double t, VectorXd& q0, VectorXd& q1, double tol_pos, double tol_vel);
+
+  // Reactions of a recorded state with accelerations `a` (least-squares multipliers of
+  // A^T lambda = B u - (M a - f); regularized where A loses rank).
+  void compute_reactions(double t, const VectorXd& q0, const VectorXd& q1);
+
+  double pivot_indicator(double t, const VectorXd& q0);
+};
+
+struct Recorder {
+  const Model& m;
+  ForwardResult& r;
+  ForwardData& d;
+  int k = 0;
+  void record(double t, const VectorXd& q0, const VectorXd& q1, double work, double dissipated);
+};
+
+// Integrator drivers: integrate from s0 to o.t1, recording every output time.
+void run_rk4(const Model& m, ForwardData& d, const State& s0, const ForwardOptions& o,
+             Recorder& rec);
+void run_cvode(const Model& m, ForwardData& d, const State& s0, const ForwardOptions& o,
+               Recorder& rec);
+
+}  // namespace mo2d::detail
