@@ -27,6 +27,8 @@ const char* to_string(Integrator i) {
       return "cvode_adams";
     case Integrator::rk4:
       return "rk4";
+    case Integrator::dopri5:
+      return "dopri5";
     case Integrator::baumgarte:
       return "baumgarte";
   }
@@ -108,7 +110,8 @@ ForwardResult forward_dynamics(const Model& m, const State& initial, const Forwa
       !(o.step > 0 && std::isfinite(o.step)))
     throw Error("forward dynamics: the fixed step must be positive (got " + fmt(o.step) + ")",
                 "step");
-  if ((o.integrator == Integrator::cvode_bdf || o.integrator == Integrator::cvode_adams) &&
+  if ((o.integrator == Integrator::cvode_bdf || o.integrator == Integrator::cvode_adams ||
+       o.integrator == Integrator::dopri5) &&
       !(o.rtol > 0 && o.atol > 0))
     throw Error("forward dynamics: tolerances must be positive", "rtol");
   if (initial.q0.size() != m.n0 || initial.q1.size() != m.n1)
@@ -138,8 +141,9 @@ ForwardResult forward_dynamics(const Model& m, const State& initial, const Forwa
   s0.t = o.t0;
   switch (o.integrator) {
     case Integrator::rk4:
+    case Integrator::dopri5:
     case Integrator::baumgarte:
-      detail::run_rk4(m, d, s0, o, rec);
+      detail::run_explicit_rk(m, d, s0, o, rec);
       break;
     case Integrator::cvode_bdf:
     case Integrator::cvode_adams:

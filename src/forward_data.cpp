@@ -33,7 +33,12 @@ ForwardData::ForwardData(const Model& model, const ForwardOptions& opt) : m(mode
   lambda = VectorXd::Zero(m.m1);
   psi = VectorXd::Zero(m.m0);
   local = VectorXd::Zero(m.n_slots);
+  An = MatrixXd::Zero(m.m1, m.n1);
+  G1 = MatrixXd::Zero(m.m1, m.m1);
+  lu_G1 = detail::SmallLU(m.m1);
   KKT = MatrixXd::Zero(m.n1 + m.m1, m.n1 + m.m1);
+  KKT.topLeftCorner(m.n1, m.n1) = M;
+  kkt_x = VectorXd::Zero(m.n1 + m.m1);
   lu_kkt = detail::SmallLU(m.n1 + m.m1);
   K = MatrixXd::Zero(m.n1, m.n1);
   lu_K = detail::SmallLU(m.n1);
@@ -68,6 +73,39 @@ void ForwardData::inputs(double t) {
   Bu.noalias() = B * u;
 }
 
+// [M A^T; A 0] [a; lambda] = [f + B u; c] by LU with partial pivoting, into kkt_x; returns the
+// pivot ratio.
+double ForwardData::solve_kkt() {
+  KKT.topRightCorner(m.n1, m.m1) = A.transpose();
+  KKT.bottomLeftCorner(m.m1, m.n1) = A;
+  ++stats.factorizations;
+  const double r = lu_kkt.compute(KKT);
+  kkt_x.head(m.n1) = rhs;
+  kkt_x.tail(m.m1) = c;
+  lu_kkt.solve_in_place(kkt_x);
+  return r;
+}
+
+// (sigma_min / sigma_max)^2 of A with unit rows, estimated by the pivot ratio of the LU of
+// A_n A_n^T: independent of the units of the constraint rows.
+double ForwardData::row_conditioning() {
+  if (m.m1 == 0) return 1.0;
+  An = A;
+  for (int i = 0; i < m.m1; ++i) {
+    const double nr = An.row(i).norm();
+    if (nr > 0) An.row(i) /= nr;
+  }
+  G1.noalias() = An * An.transpose();
+  return lu_G1.compute(G1);
+}
+
+// M + alpha A^T A (the augmented-Lagrangian and projection matrices).
+const MatrixXd& ForwardData::H_of(double penalty) {
+  H = M;
+  H.noalias() += penalty * A.transpose() * A;
+  return H;
+}
+
 void ForwardData::choose_independent(const VectorXd& q0, double t) {
   velocity_jacobian(m, q0, t, A, b);
   Eigen::ColPivHouseholderQR<MatrixXd> qr(A);
@@ -77,6 +115,7 @@ void ForwardData::choose_independent(const VectorXd& q0, double t) {
 
 void ForwardData::accelerations(double t, const VectorXd& q0, const VectorXd& q1, bool baumgarte) {
   ++stats.rhs_evaluations;
+  accel_ok = true;
   velocity_jacobian(m, q0, t, A, b);
   acceleration_rhs(m, q0, q1, t, c);
   if (baumgarte) c.noalias() -= o.baumgarte_alpha * (A * q1 - b);
@@ -87,9 +126,18 @@ void ForwardData::accelerations(double t, const VectorXd& q0, const VectorXd& q1
   rhs = f + Bu;
   switch (o.formulation) {
     case Formulation::augmented_lagrangian: {
-      H = M;
-      H.noalias() += alpha * A.transpose() * A;
-      llt_H.compute(H);
+      // Away from singular configurations: the direct solve (exact up to rounding). Near one, a
+      // state slightly off the constraint manifold (a stage of a Runge-Kutta step) makes c
+      // inconsistent in the direction A is losing, and the direct solution blows up as
+      // 1/sigma_min: there the augmented Lagrangian takes over.
+      if (row_conditioning() >= kDirectAccept && solve_kkt() > 0 && kkt_x.allFinite()) {
+        a = kkt_x.head(m.n1);
+        lambda = kkt_x.tail(m.m1);
+        break;
+      }
+      // Near a singular configuration: the augmented Lagrangian (M + alpha A^T A) stays positive
+      // definite and regularizes the degenerate direction.
+      llt_H.compute(H_of(alpha));
       ++stats.factorizations;
       if (llt_H.info() != Eigen::Success)
         throw Error("forward dynamics of '" + m.name +
@@ -97,17 +145,13 @@ void ForwardData::accelerations(double t, const VectorXd& q0, const VectorXd& q1
                         "the mechanism's motions at t = " +
                         fmt(t) + " (a body without mass or inertia?)",
                     m.name, t);
-      // Iterate in residual form (warm start: the previous multipliers): with
-      // r1 = f + B u - M a - A^T lambda and r2 = c - A a,  H da = r1 + alpha A^T r2,
-      // a += da, lambda -= alpha (c - A a). Being written on the true residuals, the
-      // iteration also refines away the rounding of the (ill-conditioned) H solves.
-      // Iterate in residual form, warm-started from the last multipliers (reset if not
+      // Iterate in residual form, warm-started from the last accepted multipliers (reset if not
       // finite): r1 = f + B u - M a - A^T lambda, r2 = c - A a; H da = r1 + alpha A^T r2,
       // a += da, lambda -= alpha (c - A a). Written on the true residuals, the iteration also
       // refines away the rounding of the (ill-conditioned) H solves. It stops when converged or
-      // when the residual no longer halves: at the rounding floor, or where the Jacobian loses
-      // rank -- there the penalty regularizes the constraint instead of enforcing it with
-      // unbounded multipliers.
+      // when the residual no longer halves: there the penalty regularizes the constraint instead
+      // of enforcing it with unbounded multipliers, and the result is flagged as inaccurate
+      // (accel_ok = false) so that an explicit integrator can step over this instant.
       if (!lambda.allFinite()) lambda.setZero();
       a.setZero();
       double prev = INFINITY;
@@ -136,27 +180,21 @@ void ForwardData::accelerations(double t, const VectorXd& q0, const VectorXd& q1
         lambda.noalias() -= alpha * ap.head(m.m1);
       }
       stats.solver_iterations += it;
+      accel_residual = prev;
+      accel_ok = prev <= kAlfAccept;
+      ++stats.regularized_evaluations;
       if (!lambda.allFinite()) lambda.setZero();
       break;
     }
     case Formulation::lagrange: {
-      KKT.setZero();
-      KKT.topLeftCorner(m.n1, m.n1) = M;
-      KKT.topRightCorner(m.n1, m.m1) = A.transpose();
-      KKT.bottomLeftCorner(m.m1, m.n1) = A;
-      ++stats.factorizations;
-      const double r = lu_kkt.compute(KKT);
+      const double r = solve_kkt();
       if (r < 1e-14)
         throw Error("forward dynamics of '" + m.name + "': [M A^T; A 0] is singular at t = " +
                         fmt(t) + " s (singular configuration; use the augmented Lagrangian)",
                     m.name, t);
-      VectorXd& x = tmp1;
-      x.resize(m.n1 + m.m1);
-      x.head(m.n1) = rhs;
-      x.tail(m.m1) = c;
-      lu_kkt.solve_in_place(x);
-      a = x.head(m.n1);
-      lambda = x.tail(m.m1);
+      a = kkt_x.head(m.n1);
+      lambda = kkt_x.tail(m.m1);
+      accel_ok = r >= kKktAccept;
       break;
     }
     case Formulation::null_space: {
@@ -268,10 +306,7 @@ void ForwardData::compute_reactions(double t, const VectorXd& q0, const VectorXd
 
 double ForwardData::pivot_indicator(double t, const VectorXd& q0) {
   velocity_jacobian(m, q0, t, A, b);
-  if (m.m1 == 0) return 1.0;
-  MatrixXd G = A * A.transpose();
-  detail::SmallLU lu(m.m1);
-  return lu.compute(G);
+  return row_conditioning();
 }
 
 void Recorder::record(double t, const VectorXd& q0, const VectorXd& q1, double work,

@@ -31,10 +31,22 @@ struct ForwardData {
   double alpha = 0;
   ForwardStats stats;
   double last_pivot = 1;
+  double accel_residual = 0;  // relative residual of the last augmented-Lagrangian iteration
+  bool accel_ok = true;       // the last accelerations are accurate (not regularized away)
+  VectorXd kkt_x;
+  MatrixXd An, G1;
+  detail::SmallLU lu_G1;
+  // The direct solve is used where row_conditioning() >= kDirectAccept (sigma ratio >= 1e-4);
+  // the augmented-Lagrangian result is accurate below the relative residual kAlfAccept.
+  static constexpr double kDirectAccept = 1e-2, kKktAccept = 1e-14, kAlfAccept = 1e-8;
 
   ForwardData(const Model& model, const ForwardOptions& opt);
 
   void inputs(double t);
+
+  double solve_kkt();
+  double row_conditioning();
+  const MatrixXd& H_of(double penalty);
 
   void choose_independent(const VectorXd& q0, double t);
 
@@ -64,8 +76,8 @@ struct Recorder {
 };
 
 // Integrator drivers: integrate from s0 to o.t1, recording every output time.
-void run_rk4(const Model& m, ForwardData& d, const State& s0, const ForwardOptions& o,
-             Recorder& rec);
+void run_explicit_rk(const Model& m, ForwardData& d, const State& s0, const ForwardOptions& o,
+                     Recorder& rec);
 void run_cvode(const Model& m, ForwardData& d, const State& s0, const ForwardOptions& o,
                Recorder& rec);
 

@@ -1,94 +1,296 @@
-// Forward dynamics: fixed-step Runge-Kutta drivers (rk4 with projection; baumgarte without).
+// Forward dynamics: explicit Runge-Kutta drivers. rk4 (classical, fixed step) and dopri5
+// (Dormand-Prince 5(4), adaptive step) project the state on the constraint manifolds after every
+// step; baumgarte (RK4 with Baumgarte's velocity feedback, Mo2DPack's scheme) does not.
+//
+// Stepping over singular instants: where the constraint Jacobian loses rank, the accelerations are
+// regularized and not accurate (ForwardData::accel_ok). The true motion is smooth through such an
+// instant, so a step whose stages avoid it is accurate: a step with an inaccurate stage is redone
+// shorter (its stages move), with the factors of kRetry in turn.
 #include <algorithm>
+#include <array>
 #include <cmath>
 
 #include "forward_data.hpp"
 #include "mo2d/dynamics.hpp"
+#include "mo2d/error.hpp"
 
 namespace mo2d::detail {
+namespace {
 
-void run_rk4(const Model& m, ForwardData& d, const State& s0, const ForwardOptions& o,
-             Recorder& rec) {
-  const bool baum = o.integrator == Integrator::baumgarte;
-  const int n0 = m.n0, n1 = m.n1;
-  VectorXd q0 = s0.q0, q1 = s0.q1;
-  double W = 0, D = 0, t = o.t0;
-  // state derivative: (q1.head(n0), a1, input power u.B^T q1, damper power)
-  VectorXd k0[4], k1[4], kw(4), kd(4);
-  for (int i = 0; i < 4; ++i) k0[i].resize(n0), k1[i].resize(n1);
-  VectorXd y0(n0), y1(n1);
-  auto deriv = [&](int i, double tt, const VectorXd& x0, const VectorXd& x1) {
-    d.accelerations(tt, x0, x1, baum);
-    k0[i] = x1.head(n0);
-    k1[i] = d.a;
-    kw[i] = d.Bu.dot(x1);
-    kd[i] = damping_power(m, x0, x1);
-  };
-  auto event = [&](double tt, const VectorXd& x0, const VectorXd& x1) {
-    return o.stop_when ? o.stop_when(tt, x0, x1) : 1.0;
-  };
-  const double tol_pos = 1e-13 * m.scale, tol_vel = 1e-13 * m.scale;
-  rec.record(t, q0, q1, W, D);
-  double g_prev = event(t, q0, q1);
-  for (int k = 1; k < o.samples; ++k) {
-    const double t_out = o.t0 + (o.t1 - o.t0) * k / (o.samples - 1);
-    const int nsteps = std::max(1, static_cast<int>(std::ceil((t_out - t) / o.step - 1e-9)));
-    const double h = (t_out - t) / nsteps;
-    for (int s = 0; s < nsteps; ++s) {
-      auto step = [&](double hh, VectorXd& x0, VectorXd& x1, double& w, double& dd, double tt) {
-        deriv(0, tt, x0, x1);
-        y0 = x0 + 0.5 * hh * k0[0];
-        y1 = x1 + 0.5 * hh * k1[0];
-        deriv(1, tt + 0.5 * hh, y0, y1);
-        y0 = x0 + 0.5 * hh * k0[1];
-        y1 = x1 + 0.5 * hh * k1[1];
-        deriv(2, tt + 0.5 * hh, y0, y1);
-        y0 = x0 + hh * k0[2];
-        y1 = x1 + hh * k1[2];
-        deriv(3, tt + hh, y0, y1);
-        x0 += (hh / 6) * (k0[0] + 2 * k0[1] + 2 * k0[2] + k0[3]);
-        x1 += (hh / 6) * (k1[0] + 2 * k1[1] + 2 * k1[2] + k1[3]);
-        w += (hh / 6) * (kw[0] + 2 * kw[1] + 2 * kw[2] + kw[3]);
-        dd += (hh / 6) * (kd[0] + 2 * kd[1] + 2 * kd[2] + kd[3]);
-        if (!baum) d.project(tt + hh, x0, x1, tol_pos, tol_vel);
-        ++d.stats.steps;
-      };
-      const VectorXd q0s = q0, q1s = q1;
-      const double Ws = W, Ds = D, ts = t;
-      step(h, q0, q1, W, D, t);
-      t = ts + h;
-      if (o.stop_when) {
-        const double g = event(t, q0, q1);
-        if ((g_prev < 0) != (g < 0) && g_prev != 0) {
-          // locate the crossing by the secant on the step, then redo the step up to it
-          double lo = 0, hi = h, glo = g_prev, ghi = g;
-          for (int it = 0; it < 40; ++it) {
-            const double mid = lo + (hi - lo) * glo / (glo - ghi);
-            VectorXd a0 = q0s, a1 = q1s;
-            double w = Ws, dd = Ds;
-            step(mid, a0, a1, w, dd, ts);
-            const double gm = event(ts + mid, a0, a1);
-            if ((gm < 0) == (glo < 0))
-              lo = mid, glo = gm;
-            else
-              hi = mid, ghi = gm;
-            if (std::abs(hi - lo) < 1e-13 * std::max(1.0, std::abs(ts)) || gm == 0) {
-              q0 = a0, q1 = a1, W = w, D = dd, t = ts + mid;
-              break;
-            }
-          }
-          d.stats.stopped_by_event = true;
-          d.stats.t_end = t;
-          rec.record(t, q0, q1, W, D);
-          return;
+// Explicit Butcher tableau, up to 7 stages. bhat: embedded lower-order weights (adaptive only).
+struct Tableau {
+  int stages = 0;
+  int order = 0;  // of the propagated solution (b)
+  std::array<std::array<double, 7>, 7> a{};
+  std::array<double, 7> b{}, bhat{}, c{};
+  bool embedded = false;
+};
+
+Tableau classical_rk4() {
+  Tableau t;
+  t.stages = 4;
+  t.order = 4;
+  t.a[1][0] = 0.5;
+  t.a[2][1] = 0.5;
+  t.a[3][2] = 1.0;
+  t.b = {1.0 / 6, 1.0 / 3, 1.0 / 3, 1.0 / 6};
+  t.c = {0, 0.5, 0.5, 1};
+  return t;
+}
+
+// Dormand & Prince (1980), "A family of embedded Runge-Kutta formulae", J. Comp. Appl. Math. 6:
+// RK5(4)7M. The 5th-order weights propagate the solution (local extrapolation).
+Tableau dormand_prince_54() {
+  Tableau t;
+  t.stages = 7;
+  t.order = 5;
+  t.embedded = true;
+  t.c = {0, 1.0 / 5, 3.0 / 10, 4.0 / 5, 8.0 / 9, 1, 1};
+  t.a[1] = {1.0 / 5};
+  t.a[2] = {3.0 / 40, 9.0 / 40};
+  t.a[3] = {44.0 / 45, -56.0 / 15, 32.0 / 9};
+  t.a[4] = {19372.0 / 6561, -25360.0 / 2187, 64448.0 / 6561, -212.0 / 729};
+  t.a[5] = {9017.0 / 3168, -355.0 / 33, 46732.0 / 5247, 49.0 / 176, -5103.0 / 18656};
+  t.a[6] = {35.0 / 384, 0, 500.0 / 1113, 125.0 / 192, -2187.0 / 6784, 11.0 / 84};
+  t.b = {35.0 / 384, 0, 500.0 / 1113, 125.0 / 192, -2187.0 / 6784, 11.0 / 84, 0};
+  t.bhat = {5179.0 / 57600, 0,       7571.0 / 16695, 393.0 / 640, -92097.0 / 339200,
+            187.0 / 2100,   1.0 / 40};
+  return t;
+}
+
+// Step-length factors tried in turn when a stage falls on a singular instant: shorter ones first,
+// varied so that no stage lands again where one failed; then longer ones, for steps too short to
+// jump over the instant's neighbourhood (where the regularized accelerations are not accurate).
+constexpr std::array<double, 11> kRetry = {0.5, 0.3, 0.7, 0.2, 0.85, 1.5, 2, 3, 4, 6, 8};
+
+// One run of an explicit RK method. The state y = (q0, q1, input work, dissipated energy).
+class RkDriver {
+ public:
+  RkDriver(const Model& m, ForwardData& d, const ForwardOptions& o, Tableau tab)
+      : m_(m),
+        d_(d),
+        o_(o),
+        tab_(tab),
+        n_(m.n0 + m.n1 + 2),
+        q0_(m.n0),
+        q1_(m.n1),
+        y_stage_(n_),
+        err_(n_) {
+    for (auto& k : k_) k.resize(n_);
+    project_ = o.integrator != Integrator::baumgarte;
+  }
+
+  void run(const State& s0, Recorder& rec) {
+    VectorXd y(n_), y_new(n_);
+    y << s0.q0, s0.q1, 0.0, 0.0;
+    double t = o_.t0;
+    record(rec, t, y);
+    double g_prev = event(t, y);
+    // adaptive: first step from the tolerance-free guess; the controller takes over from there
+    double h = tab_.embedded ? std::min(1e-3, (o_.t1 - o_.t0) / 10) : o_.step;
+    for (int k = 1; k < o_.samples; ++k) {
+      const double t_out = o_.t0 + (o_.t1 - o_.t0) * k / (o_.samples - 1);
+      while (t < t_out) {
+        double hh;
+        if (tab_.embedded) {
+          hh = std::min(h, t_out - t);
+          if (t_out - t - hh < 1e-12 * std::max(1.0, std::abs(t_out))) hh = t_out - t;
+        } else {  // fixed step: equal steps that end on the output time
+          const int nsteps = std::max(1, static_cast<int>(std::ceil((t_out - t) / o_.step - 1e-9)));
+          hh = (t_out - t) / nsteps;
         }
-        g_prev = g;
+        double used = hh;
+        advance(t, t_out, y, hh, h, y_new, used);
+        if (o_.stop_when) {
+          const double g = event(t + used, y_new);
+          if ((g_prev < 0) != (g < 0) && g_prev != 0) {
+            locate_event(t, y, used, g_prev, g, rec);
+            return;
+          }
+          g_prev = g;
+        }
+        t = (used == t_out - t) ? t_out : t + used;
+        y.swap(y_new);
+        if (++d_.stats.steps > o_.max_steps)
+          throw Error("forward dynamics of '" + m_.name + "': more than " +
+                          std::to_string(o_.max_steps) + " steps before t = " + fmt(t_out),
+                      m_.name, t);
+      }
+      record(rec, t_out, y);
+    }
+    d_.stats.t_end = t;
+  }
+
+ private:
+  const Model& m_;
+  ForwardData& d_;
+  const ForwardOptions& o_;
+  Tableau tab_;
+  int n_;
+  bool project_ = true;
+  double last_stepped_over_ = -INFINITY;
+  std::array<VectorXd, 7> k_;
+  VectorXd q0_, q1_, y_stage_, err_;
+
+  void split(const VectorXd& y) {
+    q0_ = y.head(m_.n0);
+    q1_ = y.segment(m_.n0, m_.n1);
+  }
+  // dy/dt at (t, y) into k; false if the accelerations are not accurate there
+  bool derivative(double t, const VectorXd& y, VectorXd& k) {
+    split(y);
+    d_.accelerations(t, q0_, q1_, !project_);
+    k.head(m_.n0) = q1_.head(m_.n0);
+    k.segment(m_.n0, m_.n1) = d_.a;
+    k[n_ - 2] = d_.Bu.dot(q1_);
+    k[n_ - 1] = damping_power(m_, q0_, q1_);
+    return d_.accel_ok;
+  }
+  // One step of length h from (t, y) into y_new (projected). Returns false if a stage was not
+  // accurate. err: scaled error estimate (embedded methods), else 0.
+  bool step(double t, const VectorXd& y, double h, VectorXd& y_new, double& err) {
+    bool ok = true;
+    for (int i = 0; i < tab_.stages; ++i) {
+      y_stage_ = y;
+      for (int j = 0; j < i; ++j)
+        if (tab_.a[i][j] != 0) y_stage_.noalias() += (h * tab_.a[i][j]) * k_[j];
+      ok = derivative(t + tab_.c[i] * h, y_stage_, k_[i]) && ok;
+      if (!ok) return false;
+    }
+    y_new = y;
+    for (int i = 0; i < tab_.stages; ++i)
+      if (tab_.b[i] != 0) y_new.noalias() += (h * tab_.b[i]) * k_[i];
+    err = 0;
+    if (tab_.embedded) {
+      err_.setZero();
+      for (int i = 0; i < tab_.stages; ++i)
+        if (tab_.b[i] != tab_.bhat[i]) err_.noalias() += (h * (tab_.b[i] - tab_.bhat[i])) * k_[i];
+      for (int j = 0; j < n_ - 2; ++j) {
+        const double scale = o_.atol + o_.rtol * std::max(std::abs(y[j]), std::abs(y_new[j]));
+        err = std::max(err, std::abs(err_[j]) / scale);
       }
     }
-    t = t_out;
-    rec.record(t, q0, q1, W, D);
+    if (project_) {
+      split(y_new);
+      d_.project(t + h, q0_, q1_, 1e-13 * m_.scale, 1e-13 * m_.scale);
+      y_new.head(m_.n0) = q0_;
+      y_new.segment(m_.n0, m_.n1) = q1_;
+    }
+    return true;
   }
-  d.stats.t_end = t;
+  // Take one accepted step from (t, y) with a first try of length hh; `used` returns the length
+  // taken, h the controller's next step (adaptive).
+  void advance(double t, double t_limit, const VectorXd& y, double hh, double& h, VectorXd& y_new,
+               double& used) {
+    const double h_first = hh;
+    std::size_t retry = 0;
+    for (;;) {
+      double err = 0;
+      const bool ok = step(t, y, hh, y_new, err);
+      if (!ok) {
+        // a stage fell on a singular instant: shorten the step so that its stages move
+        if (retry < kRetry.size()) {
+          ++d_.stats.stepped_over;
+          hh = std::min(h_first * kRetry[retry++], t_limit - t);
+          continue;
+        }
+        // could not avoid it: accept the regularized accelerations, and say so
+        double e2 = 0;
+        d_.accel_ok = true;
+        step_ignoring_accuracy(t, y, hh, y_new, e2);
+        if (d_.stats.warnings.size() < 20)
+          d_.stats.warnings.push_back("could not step over a singular configuration near t = " +
+                                      fmt(t) + " s; regularized accelerations used");
+        used = hh;
+        return;
+      }
+      if (retry > 0 && d_.stats.warnings.size() < 20 && t > last_stepped_over_ + 10 * h_first) {
+        d_.stats.warnings.push_back("stepped over a singular configuration near t = " + fmt(t) +
+                                    " s (the constraint Jacobian loses rank there)");
+        last_stepped_over_ = t;
+      }
+      if (!tab_.embedded) {
+        used = hh;
+        return;
+      }
+      const double factor =
+          err > 0 ? 0.9 * std::pow(err, -1.0 / (tab_.order)) : 5.0;  // elementary controller
+      if (err <= 1) {
+        used = hh;
+        // the next step grows from the step just taken, unless that one was clipped short
+        h = std::max(h, hh) == hh ? hh * std::clamp(factor, 0.2, 5.0) : h;
+        return;
+      }
+      ++d_.stats.error_test_failures;
+      hh *= std::clamp(factor, 0.1, 0.9);
+      h = hh;
+      if (hh < 1e-14 * std::max(1.0, std::abs(t)))
+        throw Error("forward dynamics of '" + m_.name + "': step size too small at t = " + fmt(t) +
+                        " s (error test)",
+                    m_.name, t);
+    }
+  }
+  void step_ignoring_accuracy(double t, const VectorXd& y, double h, VectorXd& y_new, double& err) {
+    for (int i = 0; i < tab_.stages; ++i) {
+      y_stage_ = y;
+      for (int j = 0; j < i; ++j)
+        if (tab_.a[i][j] != 0) y_stage_.noalias() += (h * tab_.a[i][j]) * k_[j];
+      derivative(t + tab_.c[i] * h, y_stage_, k_[i]);
+    }
+    y_new = y;
+    for (int i = 0; i < tab_.stages; ++i)
+      if (tab_.b[i] != 0) y_new.noalias() += (h * tab_.b[i]) * k_[i];
+    err = 0;
+    if (project_) {
+      split(y_new);
+      d_.project(t + h, q0_, q1_, 1e-13 * m_.scale, 1e-13 * m_.scale);
+      y_new.head(m_.n0) = q0_;
+      y_new.segment(m_.n0, m_.n1) = q1_;
+    }
+  }
+  double event(double t, const VectorXd& y) {
+    if (!o_.stop_when) return 1.0;
+    split(y);
+    return o_.stop_when(t, q0_, q1_);
+  }
+  void record(Recorder& rec, double t, const VectorXd& y) {
+    split(y);
+    const VectorXd q0 = q0_, q1 = q1_;
+    rec.record(t, q0, q1, y[n_ - 2], y[n_ - 1]);
+  }
+  // The stop condition changed sign over the step (t, t + h]: locate the crossing by the secant
+  // method on the step length (each try redoes the step from (t, y)), record it and stop.
+  void locate_event(double t, const VectorXd& y, double h, double g_lo, double g_hi,
+                    Recorder& rec) {
+    double lo = 0, hi = h;
+    VectorXd y_try(n_), y_best(n_);
+    double t_best = t + h;
+    for (int it = 0; it < 60; ++it) {
+      const double mid = lo + (hi - lo) * g_lo / (g_lo - g_hi);
+      double err = 0;
+      step_ignoring_accuracy(t, y, mid, y_try, err);
+      const double g = event(t + mid, y_try);
+      y_best = y_try;
+      t_best = t + mid;
+      if ((g < 0) == (g_lo < 0))
+        lo = mid, g_lo = g;
+      else
+        hi = mid, g_hi = g;
+      if (std::abs(hi - lo) < 1e-13 * std::max(1.0, std::abs(t)) || g == 0) break;
+    }
+    d_.stats.stopped_by_event = true;
+    d_.stats.t_end = t_best;
+    record(rec, t_best, y_best);
+  }
+};
+
+}  // namespace
+
+void run_explicit_rk(const Model& m, ForwardData& d, const State& s0, const ForwardOptions& o,
+                     Recorder& rec) {
+  RkDriver driver(m, d, o,
+                  o.integrator == Integrator::dopri5 ? dormand_prince_54() : classical_rk4());
+  driver.run(s0, rec);
 }
 
 }  // namespace mo2d::detail

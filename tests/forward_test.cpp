@@ -60,7 +60,8 @@ TEST(Forward, PendulumPeriodAtLargeAmplitudes) {
     ForwardOptions bdf{.integrator = Integrator::cvode_bdf, .rtol = 1e-13, .atol = 1e-13};
     ForwardOptions adams{.integrator = Integrator::cvode_adams, .rtol = 1e-13, .atol = 1e-13};
     ForwardOptions rk4{.integrator = Integrator::rk4, .step = 1e-3};
-    for (const auto& o : {bdf, adams, rk4}) {
+    ForwardOptions dopri5{.integrator = Integrator::dopri5, .rtol = 1e-12, .atol = 1e-12};
+    for (const auto& o : {bdf, adams, rk4, dopri5}) {
       const double t = bottom_passage(p, o);
       EXPECT_LE(std::abs(t - p.quarter_period) / p.quarter_period, 1e-9)
           << to_string(o.integrator) << " amplitude " << amplitude;
@@ -79,6 +80,22 @@ TEST(Forward, Rk4ConvergesAtFourthOrder) {
   EXPECT_LT(e1 / e2, 22.0);
   EXPECT_GT(e2 / e3, 11.0);
   EXPECT_LT(e2 / e3, 22.0);
+}
+
+// Dormand-Prince 5(4) with elementary step control: the error of a passage time is proportional to
+// the tolerance (local error per unit step ~ tol), so it falls ~10x per decade of tolerance.
+TEST(Forward, Dopri5ErrorFollowsTolerance) {
+  const Pendulum p = released_pendulum(2.0);
+  auto err = [&](double tol) {
+    return std::abs(bottom_passage(p, {.integrator = Integrator::dopri5, .rtol = tol, .atol = tol}) -
+                    p.quarter_period);
+  };
+  const double e6 = err(1e-6), e8 = err(1e-8), e10 = err(1e-10);
+  EXPECT_LT(e6, 1e-4);
+  EXPECT_GT(e6 / e8, 20.0);
+  EXPECT_LT(e6 / e8, 500.0);
+  EXPECT_GT(e8 / e10, 20.0);
+  EXPECT_LT(e8 / e10, 500.0);
 }
 
 // CVODE's error falls as its tolerance is tightened (BDF and Adams): the tip of the pendulum must
@@ -214,6 +231,52 @@ TEST(Forward, DoubleFourBarStaysOnThePhysicalBranch) {
   EXPECT_LE(final_error({.integrator = Integrator::rk4, .step = 1e-4}), 1e-6);
   // a branch flip ends near (1, 0), 0.9 m away; BDF at a loose tolerance must stay close
   EXPECT_LE(final_error({.integrator = Integrator::cvode_bdf, .rtol = 1e-8, .atol = 1e-8}), 1e-3);
+}
+
+// Where the stages of a step fall within ~1e-4 s of a singular instant, the regularized
+// accelerations are off by O(1); the step is redone with other lengths so that its stages avoid
+// the instant. With 41 output times the RK4 grid (h = 0.25 s / 63) puts a stage there: without
+// the step-over the final error was 1.1e-3 (it is 3.3e-7 with 11 output times and h = 4e-3).
+TEST(Forward, SingularInstantsAreSteppedOver) {
+  const Model m = build_model(mechanisms::double_fourbar());
+  const State s = consistent_state(m, {.positions = {}, .velocities = {{"crank0.w", -1.0}}});
+  const int ix = m.coordinate("crank0.B.x"), iy = m.coordinate("crank0.B.y");
+  for (const ForwardOptions& o :
+       {ForwardOptions{.t0 = 0, .t1 = 10, .samples = 41, .integrator = Integrator::rk4, .step = 4e-3},
+        ForwardOptions{.t0 = 0, .t1 = 10, .samples = 11, .integrator = Integrator::dopri5,
+                       .rtol = 1e-9, .atol = 1e-9}}) {
+    const ForwardResult r = forward_dynamics(m, s, o);
+    const int k = static_cast<int>(r.time.size()) - 1;
+    EXPECT_LE(std::hypot(r.q0(k, ix) - 0.328458111541, r.q0(k, iy) - 0.944518538179), 1e-6)
+        << to_string(o.integrator);
+    if (o.integrator == Integrator::rk4) {
+      EXPECT_GT(r.stats.stepped_over, 0);
+      const bool said = std::any_of(r.stats.warnings.begin(), r.stats.warnings.end(), [](auto& w) {
+        return w.find("stepped over a singular configuration near t = ") != std::string::npos;
+      });
+      EXPECT_TRUE(said);
+    }
+  }
+}
+
+// Output times close to a singular configuration are reported: the first of the ten singular
+// instants of the double four-bar is at t = 0.7143 s.
+TEST(Forward, NearSingularOutputTimesAreReported) {
+  const Model m = build_model(mechanisms::double_fourbar());
+  const State s = consistent_state(m, {.positions = {}, .velocities = {{"crank0.w", -1.0}}});
+  const ForwardResult r = forward_dynamics(
+      m, s, {.t0 = 0, .t1 = 1, .samples = 1001, .integrator = Integrator::rk4, .step = 1e-3});
+  // (sigma_min / sigma_max)^2 grows as the square of the distance to the instant: 2.3e-6 at the
+  // nearest output time (0.32 ms away); any sample within 0.5 ms is below 1e-5
+  EXPECT_LT(r.stats.min_pivot_ratio, 1e-5);
+  ASSERT_FALSE(r.stats.warnings.empty());
+  EXPECT_NE(r.stats.warnings[0].find("near-singular configuration at t = 0.71"), std::string::npos)
+      << r.stats.warnings[0];
+  // far from it, nothing is reported
+  const ForwardResult quiet = forward_dynamics(
+      m, s, {.t0 = 0, .t1 = 0.5, .samples = 501, .integrator = Integrator::rk4, .step = 1e-3});
+  EXPECT_TRUE(quiet.stats.warnings.empty());
+  EXPECT_GT(quiet.stats.min_pivot_ratio, 1e-3);
 }
 
 TEST(Forward, BadInputIsRefused) {

@@ -31,6 +31,7 @@ enum class Integrator {
   cvode_bdf,    // SUNDIALS CVODE, BDF (orders 1-5), Newton + dense LU, projection each step
   cvode_adams,  // SUNDIALS CVODE, Adams-Moulton (orders 1-12), fixed-point iteration, no projection
   rk4,          // classical Runge-Kutta, fixed step, projection each step
+  dopri5,       // Dormand-Prince 5(4), adaptive step (rtol, atol), projection each step
   baumgarte,    // Mo2DPack-compatible: RK4, velocity constraints stabilized by Baumgarte, no projection
 };
 enum class Formulation { augmented_lagrangian, lagrange, null_space };
@@ -59,7 +60,7 @@ struct ForwardOptions {
   int samples = 101;  // output times, equally spaced in [t0, t1] (dense output)
   Integrator integrator = Integrator::cvode_bdf;
   Formulation formulation = Formulation::augmented_lagrangian;
-  double rtol = 1e-8, atol = 1e-10;  // CVODE tolerances (atol in SI units of each variable)
+  double rtol = 1e-8, atol = 1e-10;  // CVODE and dopri5 tolerances (atol in SI units)
   double step = 1e-3;                // fixed step (rk4, baumgarte)
   double baumgarte_alpha = 20.0;     // 1/s, velocity-constraint feedback of the baumgarte mode
   double penalty = 0;                // augmented Lagrangian alpha (0: chosen from the mass scale)
@@ -68,16 +69,21 @@ struct ForwardOptions {
   std::vector<std::function<double(double t)>> efforts{};
   // Stop early when this function of the state changes sign (root finding between steps).
   std::function<double(double t, const VectorXd& q0, const VectorXd& q1)> stop_when{};
-  double singular_warning = 1e-8;  // warn when min/max pivot of the constraint Jacobian drops below
+  // Warn at an output time where (sigma_min / sigma_max)^2 of the constraint Jacobian (unit rows)
+  // is below this: 1e-4 is sigma ratio 1e-2, about 2 ms from a singular instant of the double
+  // four-bar.
+  double singular_warning = 1e-4;
 };
 
 struct ForwardStats {
   long steps = 0, rhs_evaluations = 0, factorizations = 0, projections = 0, error_test_failures = 0;
   long solver_iterations = 0;  // augmented Lagrangian iterations, summed over evaluations
+  long regularized_evaluations = 0;  // evaluations near a singular configuration (regularized)
+  long stepped_over = 0;       // steps redone to avoid evaluating inside a singular instant
   double cpu_seconds = 0;
   bool stopped_by_event = false;
   double t_end = 0;
-  double min_pivot_ratio = 1;  // smallest conditioning indicator of A seen at output times
+  double min_pivot_ratio = 1;  // smallest (sigma_min / sigma_max)^2 of A seen at output times
   std::vector<std::string> warnings;
 };
 
