@@ -1,0 +1,298 @@
+// Translation of a mo2d Model (Reduction::none) into a Box2D 2.4.1 world; see box2d_world.hpp.
+#include "box2d_world.hpp"
+
+#include <cmath>
+#include <numbers>
+
+#include "mo2d/error.hpp"
+
+namespace mo2d::crosscheck_detail {
+
+namespace {
+
+b2Vec2 to_b2(const Vec2& v) {
+  return b2Vec2(static_cast<float>(v.x()), static_cast<float>(v.y()));
+}
+
+Vec2 perp(const Vec2& d) {
+  return Vec2(-d.y(), d.x());
+}
+
+// A point given by local nodes i, j and (gamma, rho) (Example 2.6 (b)) on the geometry.
+Vec2 geometry_point(const Body& b, int ci, int cj, double gamma, double rho) {
+  const Vec2 pi = b.geometry[ci];
+  if (cj < 0) return pi;
+  const Vec2 d = b.geometry[cj] - pi;
+  return pi + gamma * d + rho * perp(d);
+}
+
+Vec2 com_velocity(const Body& b, const Eigen::VectorXd& q1) {
+  const Vec2 vi = node_velocity(b.nodes[b.ci], q1);
+  if (b.cj < 0) return vi;
+  const Vec2 d = node_velocity(b.nodes[b.cj], q1) - vi;
+  return vi + b.gamma * d + b.rho * perp(d);
+}
+
+// Local anchor (Box2D body frame) of a node; ground nodes are at their fixed world position.
+b2Vec2 local_anchor(const Model& m, const Box2DWorld& w, const NodeRef& n) {
+  if (n.body < 0) return to_b2(n.fixed);
+  return to_b2(m.bodies[n.body].geometry[n.local] - w.bodies[n.body].com_geometry);
+}
+
+b2Body* body_of(const Box2DWorld& w, int body) {
+  return body < 0 ? w.ground : w.bodies[body].body;
+}
+
+bool rotates(const Box2DWorld& w, int body) {
+  return body >= 0 && w.bodies[body].rotates;
+}
+
+// Axis i -> j of body 1 in its Box2D frame (world axes of the geometry; ground: world).
+b2Vec2 local_axis(const Model& m, const Constraint& c) {
+  const Vec2 pi = c.i.body < 0 ? c.i.fixed : m.bodies[c.i.body].geometry[c.i.local];
+  const Vec2 pj = c.j.body < 0 ? c.j.fixed : m.bodies[c.j.body].geometry[c.j.local];
+  return to_b2((pj - pi).normalized());
+}
+
+void refuse(const std::string& what, const std::string& element) {
+  throw Error("Box2D cross-check: " + what, element);
+}
+
+const Input* input_of(const Model& m, const std::string& joint, const std::string& suffix) {
+  for (const Input& in : m.inputs)
+    if (in.joint == joint && in.label == joint + suffix) return &in;
+  return nullptr;
+}
+
+}  // namespace
+
+double wrap_angle(double a) {
+  const double two_pi = 2 * std::numbers::pi;
+  a = std::fmod(a + std::numbers::pi, two_pi);
+  if (a < 0) a += two_pi;
+  return a - std::numbers::pi;
+}
+
+double box2d_angle(const Model& m, const Box2DWorld& w, int body, const Eigen::VectorXd& q0) {
+  if (body < 0 || !w.bodies[body].oriented) return 0.0;
+  return wrap_angle(body_angle(m.bodies[body], q0) - w.bodies[body].alpha);
+}
+
+Model with_inertia_floor(const Model& m, double fraction, std::vector<std::string>& notes) {
+  Model out = m;
+  for (Body& b : out.bodies) {
+    if (!b.has_omega || b.inertia > 0 || fraction <= 0) continue;
+    const Vec2 c = geometry_point(b, b.ci, b.cj, b.gamma, b.rho);
+    double r2 = 0;
+    for (const Vec2& p : b.geometry) r2 = std::fmax(r2, (p - c).squaredNorm());
+    b.inertia = fraction * b.mass * r2;
+    notes.push_back("body '" + b.name + "': centroidal inertia 0 replaced by " +
+                    std::to_string(b.inertia) + " kg m^2 in both engines");
+  }
+  return out;
+}
+
+Box2DWorld build_box2d_world(const Model& m, const Eigen::VectorXd& q0, const Eigen::VectorXd& q1,
+                             const CrosscheckOptions& options, bool motors) {
+  if (m.reduction != Reduction::none)
+    refuse("the translated Model must be built with Reduction::none (every joint a constraint)",
+           m.name);
+  for (const SpringLoad& s : m.springs) refuse("spring '" + s.name + "' is not translated", s.name);
+  for (const TorsionalLoad& s : m.torsional_springs)
+    refuse("torsional spring '" + s.name + "' is not translated", s.name);
+
+  Box2DWorld w;
+  w.world = std::make_unique<b2World>(to_b2(m.gravity));
+  w.world->SetAllowSleeping(false);
+  w.world->SetContinuousPhysics(false);
+  b2BodyDef ground_def;  // static, at the origin
+  w.ground = w.world->CreateBody(&ground_def);
+
+  for (size_t k = 0; k < m.bodies.size(); ++k) {
+    const Body& b = m.bodies[k];
+    if (!(b.mass > 0))
+      refuse("body '" + b.name + "' has no mass (Box2D gives a massless dynamic body 1 kg)",
+             b.name);
+    if (b.has_omega && !(b.inertia > 0))
+      refuse("body '" + b.name +
+                 "' rotates but has no centroidal inertia: Box2D cannot turn it (set "
+                 "CrosscheckOptions::zero_inertia_fraction to substitute a small inertia in both "
+                 "engines)",
+             b.name);
+    BodyMap map;
+    map.com_geometry = geometry_point(b, b.ci, b.cj, b.gamma, b.rho);
+    map.rotates = b.has_omega;
+    map.oriented = b.geometry.size() >= 2;
+    if (map.oriented) {
+      const Vec2 d = b.geometry[1] - b.geometry[0];
+      map.alpha = std::atan2(d.y(), d.x());
+    }
+    if (b.has_omega && !map.oriented)
+      refuse("body '" + b.name + "' has one node and a rotation: its angle is not observable",
+             b.name);
+    w.bodies.push_back(map);
+
+    b2BodyDef def;
+    def.type = b2_dynamicBody;
+    def.position = to_b2(com_position(b, q0));
+    def.angle = static_cast<float>(box2d_angle(m, w, static_cast<int>(k), q0));
+    def.linearVelocity = to_b2(com_velocity(b, q1));
+    def.angularVelocity = static_cast<float>(omega_value(b.omega, q1));
+    def.fixedRotation = !b.has_omega;
+    def.allowSleep = false;
+    b2Body* body = w.world->CreateBody(&def);
+    b2MassData md;
+    md.mass = static_cast<float>(b.mass);
+    md.center.SetZero();  // the origin is the centre of mass, so I about the origin = I centroidal
+    md.I = b.has_omega ? static_cast<float>(b.inertia) : 0.0f;
+    body->SetMassData(&md);
+    w.bodies.back().body = body;
+  }
+
+  for (size_t ci = 0; ci < m.constraints.size(); ++ci) {
+    const Constraint& c = m.constraints[ci];
+    JointMap j;
+    j.name = c.name;
+    j.constraint = static_cast<int>(ci);
+    j.body1 = c.body1;
+    j.body2 = c.body2;
+    b2Body* A = body_of(w, c.body1);
+    b2Body* B = body_of(w, c.body2);
+    switch (c.kind) {
+      case ConstraintKind::rigid:
+      case ConstraintKind::coordinate:  // an extra coordinate observes the motion only
+        continue;
+      case ConstraintKind::user_position:
+        refuse("user position constraint '" + c.name + "' has no Box2D equivalent", c.name);
+        break;
+      case ConstraintKind::user_velocity:
+        refuse("user velocity constraint '" + c.name + "' has no Box2D equivalent", c.name);
+        break;
+      case ConstraintKind::revolute: {
+        b2RevoluteJointDef def;
+        def.bodyA = A;
+        def.bodyB = B;
+        def.localAnchorA = local_anchor(m, w, c.a);
+        def.localAnchorB = local_anchor(m, w, c.b);
+        def.referenceAngle = B->GetAngle() - A->GetAngle();
+        j.kind = JointKind::revolute;
+        j.motor = motors && input_of(m, c.name, ".torque") != nullptr;
+        def.enableMotor = j.motor;
+        def.maxMotorTorque = static_cast<float>(options.max_motor_torque);
+        j.joint = w.world->CreateJoint(&def);
+        break;
+      }
+      case ConstraintKind::prismatic:
+      case ConstraintKind::slot: {
+        const bool slot = c.kind == ConstraintKind::slot;
+        const bool locked = !slot && (c.lock_position || c.lock_velocity ||
+                                      (!rotates(w, c.body1) && !rotates(w, c.body2)));
+        const bool drives_slide = input_of(m, c.name, ".force") != nullptr;
+        const bool drives_rotation = input_of(m, c.name, ".torque") != nullptr;
+        if (locked) {
+          b2PrismaticJointDef def;
+          def.bodyA = A;
+          def.bodyB = B;
+          def.localAnchorA = local_anchor(m, w, c.i);
+          def.localAnchorB = local_anchor(m, w, c.s);
+          def.localAxisA = local_axis(m, c);
+          def.referenceAngle = B->GetAngle() - A->GetAngle();
+          j.kind = JointKind::prismatic;
+          j.motor = motors && drives_slide;
+          j.linear_motor = true;
+          def.enableMotor = j.motor;
+          def.maxMotorForce = static_cast<float>(options.max_motor_force);
+          j.joint = w.world->CreateJoint(&def);
+        } else {
+          if (drives_slide && motors)
+            refuse(std::string(slot ? "pin-in-slot" : "prismatic") + " joint '" + c.name +
+                       "': a driven slide with a free rotation (Box2D's wheel joint has only a "
+                       "rotary motor)",
+                   c.name);
+          b2WheelJointDef def;
+          def.bodyA = A;
+          def.bodyB = B;
+          def.localAnchorA = local_anchor(m, w, c.i);
+          def.localAnchorB = local_anchor(m, w, c.s);
+          def.localAxisA = local_axis(m, c);
+          def.stiffness = 0;  // a pin in a slot: no suspension spring
+          def.damping = 0;
+          j.kind = JointKind::wheel;
+          j.motor = motors && drives_rotation;
+          def.enableMotor = j.motor;
+          def.maxMotorTorque = static_cast<float>(options.max_motor_torque);
+          j.joint = w.world->CreateJoint(&def);
+        }
+        break;
+      }
+    }
+    w.joints.push_back(j);
+  }
+  return w;
+}
+
+double joint_coordinate(const Model& m, const Box2DWorld& w, const JointMap& j,
+                        const Eigen::VectorXd& q0) {
+  if (j.linear_motor) return q0[m.constraints[j.constraint].q];
+  return wrap_angle(box2d_angle(m, w, j.body2, q0) - box2d_angle(m, w, j.body1, q0));
+}
+
+double box2d_joint_coordinate(const JointMap& j) {
+  switch (j.kind) {
+    case JointKind::revolute:
+      return static_cast<b2RevoluteJoint*>(j.joint)->GetJointAngle();
+    case JointKind::prismatic:
+      return static_cast<b2PrismaticJoint*>(j.joint)->GetJointTranslation();
+    case JointKind::wheel:
+      return static_cast<b2WheelJoint*>(j.joint)->GetJointAngle();
+  }
+  return 0;
+}
+
+void set_motor_speed(const JointMap& j, double speed) {
+  const float s = static_cast<float>(speed);
+  switch (j.kind) {
+    case JointKind::revolute:
+      static_cast<b2RevoluteJoint*>(j.joint)->SetMotorSpeed(s);
+      break;
+    case JointKind::prismatic:
+      static_cast<b2PrismaticJoint*>(j.joint)->SetMotorSpeed(s);
+      break;
+    case JointKind::wheel:
+      static_cast<b2WheelJoint*>(j.joint)->SetMotorSpeed(s);
+      break;
+  }
+}
+
+double motor_effort(const JointMap& j, double inv_dt) {
+  const float f = static_cast<float>(inv_dt);
+  switch (j.kind) {
+    case JointKind::revolute:
+      return static_cast<b2RevoluteJoint*>(j.joint)->GetMotorTorque(f);
+    case JointKind::prismatic:
+      return static_cast<b2PrismaticJoint*>(j.joint)->GetMotorForce(f);
+    case JointKind::wheel:
+      return static_cast<b2WheelJoint*>(j.joint)->GetMotorTorque(f);
+  }
+  return 0;
+}
+
+Vec2 reaction_force(const JointMap& j, double inv_dt) {
+  const b2Vec2 F = j.joint->GetReactionForce(static_cast<float>(inv_dt));  // on body B
+  return Vec2(F.x, F.y);
+}
+
+void apply_loads(const Model& m, Box2DWorld& w, double t) {
+  for (const PointLoad& f : m.forces) {
+    const double fx = f.fx ? f.fx(t) : 0.0, fy = f.fy ? f.fy(t) : 0.0;
+    if (f.body < 0) continue;
+    const Body& b = m.bodies[f.body];
+    const Vec2 p = geometry_point(b, f.ci, f.cj, f.gamma, f.rho) - w.bodies[f.body].com_geometry;
+    b2Body* body = w.bodies[f.body].body;
+    body->ApplyForce(to_b2(Vec2(fx, fy)), body->GetWorldPoint(to_b2(p)), false);
+  }
+  for (const TorqueLoad& tl : m.torques)
+    if (tl.body >= 0 && tl.torque) w.bodies[tl.body].body->ApplyTorque(tl.torque(t), false);
+}
+
+}  // namespace mo2d::crosscheck_detail

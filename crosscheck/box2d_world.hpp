@@ -1,0 +1,76 @@
+#pragma once
+// Private to mo2d_box2d: a Box2D 2.4.1 world built from a mo2d Model, with the map back to the
+// Model's bodies and joints.
+//
+// Frames: body b's Box2D origin is its centre of mass; its local axes are the world axes of the
+// Model's geometry (the shape as defined), so a node's local position is geometry - com(geometry)
+// and the Box2D angle phi is the rotation since that definition: phi = body_angle(q0) - alpha_b,
+// alpha_b = angle of node 1 seen from node 0 in the geometry.
+#include <box2d/box2d.h>
+
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "mo2d/crosscheck.hpp"
+#include "mo2d/model.hpp"
+
+namespace mo2d::crosscheck_detail {
+
+struct BodyMap {
+  b2Body* body = nullptr;
+  Vec2 com_geometry{0, 0};  // centre of mass in the geometry (world, as defined)
+  double alpha = 0;         // geometry angle of node 1 seen from node 0 (0 for one node)
+  bool rotates = false;     // has a rotation in mo2d (and in Box2D)
+  bool oriented = false;    // has >= 2 nodes, so its angle is observable from q0
+};
+
+enum class JointKind { revolute, prismatic, wheel };
+
+struct JointMap {
+  std::string name{};
+  JointKind kind = JointKind::revolute;
+  b2Joint* joint = nullptr;
+  int constraint = -1;  // index in Model::constraints
+  int body1 = -1, body2 = -1;
+  bool motor = false;         // driven (an input of the Model)
+  bool linear_motor = false;  // motor drives the slider coordinate (prismatic) or the rotation
+};
+
+struct Box2DWorld {
+  std::unique_ptr<b2World> world{};
+  b2Body* ground = nullptr;
+  std::vector<BodyMap> bodies{};  // one per Model body
+  std::vector<JointMap> joints{};
+};
+
+// Refuses (Error naming the element) what Box2D cannot represent. The Model must be built with
+// Reduction::none. Bodies are placed at (q0, q1). Without `motors` the driven joints are free
+// (forward dynamics with zero efforts).
+Box2DWorld build_box2d_world(const Model& m, const Eigen::VectorXd& q0, const Eigen::VectorXd& q1,
+                             const CrosscheckOptions& options, bool motors);
+
+// Box2D's angle of body b for mo2d coordinates q0 (0 for a body that does not rotate), wrapped to
+// (-pi, pi].
+double box2d_angle(const Model& m, const Box2DWorld& w, int body, const Eigen::VectorXd& q0);
+
+// The coordinate a joint's motor drives, from mo2d's q0: relative angle phi2 - phi1 (wrapped) or
+// the slider coordinate; and the same read from Box2D (unwrapped for angles).
+double joint_coordinate(const Model& m, const Box2DWorld& w, const JointMap& j,
+                        const Eigen::VectorXd& q0);
+double box2d_joint_coordinate(const JointMap& j);
+
+// Set the motor speed / read the motor effort (N m or N) and the reaction force on body 2 (N).
+void set_motor_speed(const JointMap& j, double speed);
+double motor_effort(const JointMap& j, double inv_dt);
+Vec2 reaction_force(const JointMap& j, double inv_dt);
+
+// Point forces and torques of the Model at time t (Box2D clears them after each step).
+void apply_loads(const Model& m, Box2DWorld& w, double t);
+
+// Model with every rotating zero-inertia body given I = fraction m r^2; notes what it changed.
+Model with_inertia_floor(const Model& m, double fraction, std::vector<std::string>& notes);
+
+double wrap_angle(double a);
+
+}  // namespace mo2d::crosscheck_detail

@@ -1,0 +1,220 @@
+// Inverse cross-check: Box2D's motors follow mo2d's exact motion; the motor efforts and joint
+// reactions of every step are compared with mo2d's inverse dynamics.
+//
+// Which instant a Box2D step represents. Step n runs from t_n to t_n + h: v += h (g + F/m), then
+// impulses make the joint velocities satisfy the motor targets and J(x_n) v = 0, then x += h v.
+// The motor target is the mean rate (s(t_n + h) - s(t_n)) / h, so the positions follow the exact
+// path without an O(h) drift and the velocity after step n is that of t_n + h/2. The velocities
+// start at the exact state of t0 - h/2, so the impulse of step n is M (v(t_n + h/2) -
+// v(t_n - h/2)) - h f(x_n, t_n): the central difference of the momentum at t_n, with the
+// Jacobian and the loads of x_n, t_n. Hence the default sample_offset = 0 (compared at t_n); the
+// convergence study (bench/crosscheck_study.cpp) measures the offsets 0, 1/2 and 1.
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+
+#include "box2d_world.hpp"
+#include "mo2d/crosscheck.hpp"
+#include "mo2d/error.hpp"
+
+namespace mo2d {
+
+namespace {
+
+using crosscheck_detail::Box2DWorld;
+using crosscheck_detail::JointMap;
+
+int label_index(const std::vector<std::string>& labels, const std::string& label) {
+  for (size_t k = 0; k < labels.size(); ++k)
+    if (labels[k] == label) return static_cast<int>(k);
+  return -1;
+}
+
+// Per-channel error of scalar series (efforts) or of 2D vectors (reaction forces).
+ChannelError channel_error(const std::string& label, const Eigen::VectorXd& time,
+                           const Eigen::MatrixXd& ref, const Eigen::MatrixXd& box) {
+  ChannelError e;
+  e.label = label;
+  double sum = 0;
+  for (Eigen::Index k = 0; k < ref.rows(); ++k) {
+    e.peak = std::fmax(e.peak, ref.row(k).norm());
+    const double d = (box.row(k) - ref.row(k)).norm();
+    sum += d * d;
+    if (d > e.max) {
+      e.max = d;
+      e.max_time = time[k];
+    }
+  }
+  const double n = static_cast<double>(std::max<Eigen::Index>(ref.rows(), 1));
+  const double peak = e.peak > 0 ? e.peak : 1.0;
+  e.rms = std::sqrt(sum / n) / peak;
+  e.max /= peak;
+  return e;
+}
+
+void judge(CrosscheckReport& r, const CrosscheckOptions& o) {
+  auto check = [&](const std::vector<ChannelError>& chans, double rms_tol, double max_tol,
+                   const char* what) {
+    for (const ChannelError& c : chans) {
+      if (c.rms > rms_tol)
+        r.failures.push_back(std::string(what) + " '" + c.label + "': RMS error " +
+                             std::to_string(c.rms) + " of peak > " + std::to_string(rms_tol));
+      if (c.max > max_tol)
+        r.failures.push_back(std::string(what) + " '" + c.label + "': max error " +
+                             std::to_string(c.max) + " of peak > " + std::to_string(max_tol) +
+                             " at t = " + std::to_string(c.max_time));
+    }
+  };
+  check(r.efforts, o.effort_rms_tolerance, o.effort_max_tolerance, "effort");
+  check(r.reactions, o.reaction_rms_tolerance, o.reaction_max_tolerance, "reaction");
+  r.agree = r.failures.empty();
+}
+
+}  // namespace
+
+CrosscheckReport crosscheck_inverse(const Model& reference_in, const Model& simulated_in,
+                                    std::span<const Prescribed> motion,
+                                    const InverseOptions& options, const CrosscheckOptions& check) {
+  using namespace crosscheck_detail;
+  if (!(check.step > 0) || check.velocity_iterations < 1 || check.position_iterations < 0)
+    throw Error("Box2D cross-check: the step must be > 0 and the velocity iterations >= 1",
+                simulated_in.name);
+  const auto start = std::chrono::steady_clock::now();
+  CrosscheckReport r;
+  r.mechanism = simulated_in.name;
+  r.step = check.step;
+  r.velocity_iterations = check.velocity_iterations;
+  r.position_iterations = check.position_iterations;
+  r.sample_offset = check.sample_offset;
+  r.feedback_time = check.feedback_time;
+  const Model reference = with_inertia_floor(reference_in, check.zero_inertia_fraction, r.notes);
+  const Model simulated = with_inertia_floor(simulated_in, check.zero_inertia_fraction, r.notes);
+  if (simulated.n_inputs() != simulated.dof)
+    throw Error("Box2D cross-check of '" + simulated.name +
+                    "': " + std::to_string(simulated.n_inputs()) + " inputs for " +
+                    std::to_string(simulated.dof) +
+                    " degrees of freedom (the motors must fix "
+                    "the motion)",
+                simulated.name);
+
+  const double h = check.step, t0 = options.t0;
+  const int steps = static_cast<int>(std::floor((options.t1 - t0) / h + 1e-9));
+  InverseData sim(simulated, motion, options), ref(reference, motion, options);
+
+  // Velocities of t0 - h/2, positions of t0 (see the top of this file).
+  inverse_dynamics_sample(simulated, sim, t0 - h / 2);
+  const Eigen::VectorXd q1_start = sim.q1;
+  sim.has_previous = false;
+  inverse_dynamics_sample(simulated, sim, t0);
+  Box2DWorld w = build_box2d_world(simulated, sim.q0, q1_start, check, true);
+
+  std::vector<const JointMap*> motors;
+  for (const Input& in : simulated.inputs)
+    for (const JointMap& j : w.joints)
+      if (j.motor && j.name == in.joint) motors.push_back(&j);
+  if (motors.size() != simulated.inputs.size())
+    throw Error("Box2D cross-check of '" + simulated.name + "': an input has no motor",
+                simulated.name);
+
+  // Effort labels: the reference's inputs, matched to the simulated inputs by label.
+  const std::vector<std::string> ref_inputs = reference.input_labels();
+  const std::vector<std::string> ref_reactions = reference.reaction_labels();
+  std::vector<int> effort_col;
+  for (const Input& in : simulated.inputs) {
+    r.effort_labels.push_back(in.label);
+    const int c = label_index(ref_inputs, in.label);
+    if (c < 0)
+      throw Error("Box2D cross-check: reference has no input '" + in.label + "'", in.label);
+    effort_col.push_back(c);
+  }
+  std::vector<int> reaction_col;  // Fx column in the reference, per Box2D joint
+  for (const JointMap& j : w.joints) {
+    const int c = label_index(ref_reactions, j.name + ".Fx");
+    if (c < 0)
+      throw Error("Box2D cross-check: reference has no reaction '" + j.name + ".Fx'", j.name);
+    reaction_col.push_back(c);
+    r.reaction_labels.push_back(j.name + ".Fx");
+    r.reaction_labels.push_back(j.name + ".Fy");
+  }
+
+  const int n_motor = static_cast<int>(motors.size());
+  const int n_joint = static_cast<int>(w.joints.size());
+  const int rows = std::max(steps - check.skip_steps, 0);
+  r.time.resize(rows);
+  r.mo2d_efforts.resize(rows, n_motor);
+  r.box2d_efforts.resize(rows, n_motor);
+  r.mo2d_reactions.resize(rows, 2 * n_joint);
+  r.box2d_reactions.resize(rows, 2 * n_joint);
+
+  // Exact joint coordinates, unwrapped from t0 (Box2D's joint angles start at 0).
+  // A slider coordinate is absolute in both engines; an angle is unwrapped from t0.
+  std::vector<double> s_now(n_motor), s_exact(n_motor, 0.0);
+  for (int k = 0; k < n_motor; ++k) {
+    s_now[k] = joint_coordinate(simulated, w, *motors[k], sim.q0);
+    if (motors[k]->linear_motor) s_exact[k] = s_now[k];
+  }
+  const double inv_dt = 1.0 / h;
+  for (int n = 0; n < steps; ++n) {
+    const double t = t0 + n * h;
+    inverse_dynamics_sample(simulated, sim, t + h);
+    for (int k = 0; k < n_motor; ++k) {
+      const double s_next = joint_coordinate(simulated, w, *motors[k], sim.q0);
+      const double ds = motors[k]->linear_motor ? s_next - s_now[k] : wrap_angle(s_next - s_now[k]);
+      double speed = ds / h;
+      if (check.feedback_time > 0)
+        speed += (s_exact[k] - box2d_joint_coordinate(*motors[k])) / check.feedback_time;
+      set_motor_speed(*motors[k], speed);
+      s_now[k] = s_next;
+      s_exact[k] += ds;
+    }
+    apply_loads(simulated, w, t);
+    w.world->Step(static_cast<float>(h), check.velocity_iterations, check.position_iterations);
+    for (int k = 0; k < n_motor; ++k) {
+      const double err = box2d_joint_coordinate(*motors[k]) - s_exact[k];
+      r.tracking_error = std::fmax(r.tracking_error, std::fabs(err));
+    }
+    if (n < check.skip_steps) continue;
+    const int row = n - check.skip_steps;
+    const double tc = t + check.sample_offset * h;
+    inverse_dynamics_sample(reference, ref, tc);
+    r.time[row] = tc;
+    for (int k = 0; k < n_motor; ++k) {
+      r.mo2d_efforts(row, k) = ref.u[effort_col[k]];
+      r.box2d_efforts(row, k) = motor_effort(*motors[k], inv_dt);
+    }
+    for (int k = 0; k < n_joint; ++k) {
+      const Vec2 F = reaction_force(w.joints[k], inv_dt);
+      r.mo2d_reactions(row, 2 * k) = ref.reactions[reaction_col[k]];
+      r.mo2d_reactions(row, 2 * k + 1) = ref.reactions[reaction_col[k] + 1];
+      r.box2d_reactions(row, 2 * k) = F.x();
+      r.box2d_reactions(row, 2 * k + 1) = F.y();
+    }
+  }
+  r.steps = steps;
+
+  for (int k = 0; k < n_motor; ++k) {
+    r.efforts.push_back(
+        channel_error(r.effort_labels[k], r.time, r.mo2d_efforts.col(k), r.box2d_efforts.col(k)));
+    r.effort_rms = std::fmax(r.effort_rms, r.efforts.back().rms);
+    r.effort_max = std::fmax(r.effort_max, r.efforts.back().max);
+  }
+  for (int k = 0; k < n_joint; ++k) {
+    r.reactions.push_back(channel_error(w.joints[k].name, r.time,
+                                        r.mo2d_reactions.middleCols(2 * k, 2),
+                                        r.box2d_reactions.middleCols(2 * k, 2)));
+    r.reaction_rms = std::fmax(r.reaction_rms, r.reactions.back().rms);
+    r.reaction_max = std::fmax(r.reaction_max, r.reactions.back().max);
+  }
+  judge(r, check);
+  r.cpu_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  return r;
+}
+
+CrosscheckReport crosscheck_inverse(const System& system, std::span<const Prescribed> motion,
+                                    const InverseOptions& options, const CrosscheckOptions& check) {
+  const Model reference = build_model(system);
+  const Model simulated = build_model(system, {.reduction = Reduction::none});
+  return crosscheck_inverse(reference, simulated, motion, options, check);
+}
+
+}  // namespace mo2d

@@ -1,0 +1,120 @@
+#pragma once
+// Cross-check of mo2d against Box2D 2.4.1 (library mo2d_box2d, target mo2d::box2d).
+//
+// Box2D shares nothing with mo2d: absolute body coordinates instead of nodes, sequential impulses
+// instead of an orthogonal complement, a first-order semi-implicit Euler step and 32-bit floats.
+// Agreement is therefore real evidence, within the accuracy of Box2D's scheme (docs/crosscheck.md
+// gives the convergence study the default tolerances come from).
+//
+// Translation (one b2Body per mo2d body, origin at its centre of mass, mass and centroidal inertia
+// set by b2Body::SetMassData; joints from a Model built with Reduction::none, where every joint is
+// an explicit constraint naming its two bodies):
+//   revolute -> b2RevoluteJoint; prismatic -> b2PrismaticJoint (b2WheelJoint when the rotation is
+//   not locked); pin-in-slot -> b2WheelJoint with zero stiffness; actuated joints -> motors;
+//   gravity, point forces and torques -> b2World gravity, ApplyForce, ApplyTorque.
+//   Extra coordinates only observe the motion and are accepted. User constraints, springs, a
+//   massless body, a rotating body without centroidal inertia and a driven slide of a
+//   pin-in-slot are refused with an Error naming the element.
+#include <Eigen/Core>
+#include <iosfwd>
+#include <span>
+#include <string>
+#include <vector>
+
+#include "mo2d/forward.hpp"
+#include "mo2d/inverse.hpp"
+#include "mo2d/model.hpp"
+#include "mo2d/system.hpp"
+
+namespace mo2d {
+
+struct CrosscheckOptions {
+  double step = 1.0 / 2000;      // Box2D time step h (s)
+  int velocity_iterations = 50;  // sequential-impulse sweeps per step
+  int position_iterations = 20;  // nonlinear Gauss-Seidel position sweeps per step
+  // Motor speed target of step n: (s(t_n + h) - s(t_n)) / h from the exact motion, plus
+  // (s_exact(t_n) - s_box2d(t_n)) / feedback_time when feedback_time > 0 (0: no feedback).
+  double feedback_time = 0.0;  // s
+  // Box2D's motor impulse of step n [t_n, t_n + h] is compared with mo2d at t_n + offset h.
+  double sample_offset = 0.0;
+  int skip_steps = 10;  // first steps left out of the statistics (warm starting has no history)
+  double max_motor_torque = 1e6, max_motor_force = 1e6;  // motor limits (N m, N)
+  // A rotating body whose centroidal inertia is 0 (a point mass on a massless link) cannot turn
+  // in Box2D; if > 0 such bodies get I = fraction * m * (farthest node distance)^2 in BOTH the
+  // Box2D world and the mo2d reference (recorded in the report); 0: refuse them.
+  double zero_inertia_fraction = 0.0;
+  // Agreement: each channel's error relative to its peak. Chosen for the default step and
+  // iterations from the convergence study (docs/crosscheck.md): the examples' errors are ~c h with
+  // c <= 12/s (RMS) and <= 30/s (max), i.e. <= 0.6 % and 1.5 % at h = 1/2000 s; 2x margin.
+  double effort_rms_tolerance = 0.01, effort_max_tolerance = 0.03;
+  double reaction_rms_tolerance = 0.01, reaction_max_tolerance = 0.03;
+};
+
+// Error of one compared quantity (an effort, or a joint's reaction force vector), relative to the
+// peak magnitude of mo2d's value over the compared steps.
+struct ChannelError {
+  std::string label{};
+  double peak = 0;          // max |mo2d value| (N m, N)
+  double rms = 0, max = 0;  // relative: rms |box2d - mo2d| / peak, max |...| / peak
+  double max_time = 0;      // time of the largest error (s)
+};
+
+struct CrosscheckReport {
+  std::string mechanism{};
+  double step = 0;
+  int velocity_iterations = 0, position_iterations = 0;
+  double sample_offset = 0, feedback_time = 0;
+  int steps = 0;  // Box2D steps taken
+  std::vector<ChannelError> efforts{}, reactions{};
+  double effort_rms = 0, effort_max = 0;      // worst channel
+  double reaction_rms = 0, reaction_max = 0;  // worst joint
+  double tracking_error = 0;  // max |Box2D joint coordinate - exact| over driven joints (rad, m)
+  std::vector<std::string> notes{};     // substitutions made (zero_inertia_fraction)
+  bool agree = false;                   // all errors within the options' tolerances
+  std::vector<std::string> failures{};  // which tolerance was exceeded, by which channel
+  double cpu_seconds = 0;
+  // Time series (one row per compared step): t (the compared instant), mo2d and Box2D values.
+  Eigen::VectorXd time{};
+  std::vector<std::string> effort_labels{}, reaction_labels{};  // reaction labels: joint.Fx/.Fy
+  Eigen::MatrixXd mo2d_efforts{}, box2d_efforts{}, mo2d_reactions{}, box2d_reactions{};
+};
+
+// Inverse cross-check: Box2D's motors follow the exact motion of `simulated` for `motion`
+// over [options.t0, options.t1] (options.samples is not used: every Box2D step is compared),
+// and Box2D's motor efforts and joint reactions are compared with mo2d's inverse dynamics of
+// `reference`. Normally both are the same mechanism; a test can plant an error in `reference`.
+// `simulated` must be built with Reduction::none; `reference` may use any reduction.
+CrosscheckReport crosscheck_inverse(const Model& reference, const Model& simulated,
+                                    std::span<const Prescribed> motion,
+                                    const InverseOptions& options,
+                                    const CrosscheckOptions& check = {});
+// The same for one mechanism, the CLI's entry point: reference = build_model(system),
+// simulated = build_model(system, {.reduction = Reduction::none}).
+CrosscheckReport crosscheck_inverse(const System& system, std::span<const Prescribed> motion,
+                                    const InverseOptions& options,
+                                    const CrosscheckOptions& check = {});
+
+// Forward cross-check: from the same consistent state (with no input efforts: the driven joints
+// are free), mo2d (CVODE BDF, rtol 1e-10) and Box2D integrate the motion up to t1; centres of mass
+// and body angles are compared at `samples` instants that fall on Box2D steps. `model` must be
+// built with Reduction::none; check.zero_inertia_fraction applies as in crosscheck_inverse.
+struct ForwardCrosscheck {
+  std::string mechanism{};
+  double step = 0;
+  int steps = 0;
+  double max_position_error = 0;  // max over bodies and instants of |centre of mass error| (m)
+  double max_angle_error = 0;     // rad
+  double final_position_error = 0, final_angle_error = 0;
+  double relative_position_error = 0;                       // max_position_error / Model::scale
+  Eigen::VectorXd time{}, position_error{}, angle_error{};  // per instant, worst body
+};
+ForwardCrosscheck crosscheck_forward(const Model& model, const State& initial, double t1,
+                                     const CrosscheckOptions& check = {}, int samples = 101);
+
+// A fixed-width table of the report (one line per channel) and its CSV (atomic write):
+// columns t, then for each effort and reaction label "mo2d.<label>" and "box2d.<label>".
+void print_crosscheck_table(std::ostream& out, const CrosscheckReport& report);
+std::string crosscheck_csv(const CrosscheckReport& report);
+void write_crosscheck_csv(const CrosscheckReport& report, const std::string& path);
+
+}  // namespace mo2d
