@@ -36,6 +36,15 @@ ForwardData::ForwardData(const Model& model, const ForwardOptions& opt) : m(mode
   An = MatrixXd::Zero(m.m1, m.n1);
   G1 = MatrixXd::Zero(m.m1, m.m1);
   lu_G1 = detail::SmallLU(m.m1);
+  row_scale = VectorXd::Ones(m.m1);
+  AMinv = MatrixXd::Zero(m.m1, m.n1);
+  {
+    Eigen::LLT<MatrixXd> llt_M(M);
+    const auto d = llt_M.matrixLLT().diagonal();
+    // M positive definite and not nearly singular (a massless body makes it singular)
+    has_Minv = llt_M.info() == Eigen::Success && d.minCoeff() > 1e-6 * d.maxCoeff();
+    if (has_Minv) Minv = llt_M.solve(MatrixXd::Identity(m.n1, m.n1));
+  }
   KKT = MatrixXd::Zero(m.n1 + m.m1, m.n1 + m.m1);
   KKT.topLeftCorner(m.n1, m.n1) = M;
   kkt_x = VectorXd::Zero(m.n1 + m.m1);
@@ -86,6 +95,39 @@ double ForwardData::solve_kkt() {
   return r;
 }
 
+// Direct accelerations by the Schur complement (M positive definite, M^-1 constant, eq. 4.1):
+// with unit rows A_n = D A, c_n = D c:  (A_n M^-1 A_n^T) lambda_n = A_n M^-1 rhs - c_n,
+// a = M^-1 (rhs - A_n^T lambda_n), lambda = D lambda_n. Returns (min/max of the Cholesky
+// diagonal)^2 of A_n M^-1 A_n^T, a conditioning estimate of A in the mass metric; a and lambda
+// are set only when it is >= kDirectAccept.
+double ForwardData::solve_schur() {
+  if (m.m1 == 0) {
+    a.noalias() = Minv * rhs;
+    return 1.0;
+  }
+  for (int i = 0; i < m.m1; ++i) {
+    const double nr = A.row(i).norm();
+    row_scale[i] = nr > 0 ? 1.0 / nr : 1.0;
+  }
+  An = row_scale.asDiagonal() * A;
+  AMinv.noalias() = An * Minv;
+  G1.noalias() = AMinv * An.transpose();
+  llt_G.compute(G1);
+  const auto d = llt_G.matrixLLT().diagonal();
+  const double dmax = d.maxCoeff(), dmin = d.minCoeff();
+  const double ratio =
+      (llt_G.info() == Eigen::Success && dmax > 0) ? (dmin / dmax) * (dmin / dmax) : 0;
+  if (!(ratio >= kDirectAccept)) return ratio;
+  tmp0.noalias() = Minv * rhs;  // unconstrained accelerations
+  r1 = -c.cwiseProduct(row_scale);
+  r1.noalias() += AMinv * rhs;
+  llt_G.solveInPlace(r1);  // lambda_n
+  a = tmp0;
+  a.noalias() -= AMinv.transpose() * r1;
+  lambda = r1.cwiseProduct(row_scale);
+  return ratio;
+}
+
 // (sigma_min / sigma_max)^2 of A with unit rows, estimated by the pivot ratio of the LU of
 // A_n A_n^T: independent of the units of the constraint rows.
 double ForwardData::row_conditioning() {
@@ -126,11 +168,14 @@ void ForwardData::accelerations(double t, const VectorXd& q0, const VectorXd& q1
   rhs = f + Bu;
   switch (o.formulation) {
     case Formulation::augmented_lagrangian: {
-      // Away from singular configurations: the direct solve (exact up to rounding). Near one, a
-      // state slightly off the constraint manifold (a stage of a Runge-Kutta step) makes c
-      // inconsistent in the direction A is losing, and the direct solution blows up as
-      // 1/sigma_min: there the augmented Lagrangian takes over.
-      if (row_conditioning() >= kDirectAccept && solve_kkt() > 0 && kkt_x.allFinite()) {
+      // Away from singular configurations: a direct solve (exact up to rounding); by the Schur
+      // complement with the constant M^-1 when M is positive definite, else of the KKT matrix.
+      // Near a singular configuration, a state slightly off the constraint manifold (a stage of
+      // a Runge-Kutta step) makes c inconsistent in the direction A is losing, and the direct
+      // solution blows up as 1/sigma_min: there the augmented Lagrangian takes over.
+      if (has_Minv) {
+        if (solve_schur() >= kDirectAccept) break;
+      } else if (row_conditioning() >= kDirectAccept && solve_kkt() > 0 && kkt_x.allFinite()) {
         a = kkt_x.head(m.n1);
         lambda = kkt_x.tail(m.m1);
         break;

@@ -34,7 +34,10 @@ struct ForwardData {
   double accel_residual = 0;  // relative residual of the last augmented-Lagrangian iteration
   bool accel_ok = true;       // the last accelerations are accurate (not regularized away)
   VectorXd kkt_x;
-  MatrixXd An, G1;
+  MatrixXd An, G1, Minv, AMinv;
+  VectorXd row_scale;
+  bool has_Minv = false;  // M positive definite: direct solves by the Schur complement
+  Eigen::LLT<MatrixXd> llt_G;
   detail::SmallLU lu_G1;
   // The direct solve is used where row_conditioning() >= kDirectAccept (sigma ratio >= 1e-4);
   // the augmented-Lagrangian result is accurate below the relative residual kAlfAccept.
@@ -45,6 +48,7 @@ struct ForwardData {
   void inputs(double t);
 
   double solve_kkt();
+  double solve_schur();
   double row_conditioning();
   const MatrixXd& H_of(double penalty);
 
