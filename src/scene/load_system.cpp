@@ -311,12 +311,12 @@ const BuiltSubsystem& subsystem(const Reader& r, const YAML::Node& ref, Subsyste
   if (auto it = lib.built.find(name); it != lib.built.end()) return it->second;
   std::vector<std::string> names;
   YAML::Node def;
+  bool found = false;
   for (const auto& [k, v] : r.entries(lib.definitions, "subsystems")) {
     names.push_back(k.Scalar());
-    if (k.Scalar() == name) def = v;
+    if (k.Scalar() == name) def.reset(v), found = true;
   }
-  if (!def.IsDefined())
-    r.fail(ref, "undefined subsystem '" + name + "'" + did_you_mean(name, names));
+  if (!found) r.fail(ref, "undefined subsystem '" + name + "'" + did_you_mean(name, names));
   if (!lib.building.insert(name).second)
     r.fail(ref, "subsystem '" + name + "' contains itself (through its instances)");
   r.check_keys(def, kSystemKeys, "subsystem '" + name + "'");

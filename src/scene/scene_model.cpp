@@ -31,9 +31,13 @@ ParameterOverride parse_override(std::string_view text) {
 
 namespace {
 
-const Location* element_location(const Scene& s, const std::string& element) {
+const Location* element_location(const Scene& s, const std::string& element,
+                                 const std::string& message) {
   for (const auto& [name, where] : s.elements)
     if (name == element) return &where;
+  // otherwise the first element the message names ("coordinate 'crank.angle': ...")
+  for (const auto& [name, where] : s.elements)
+    if (message.find("'" + name + "'") != std::string::npos) return &where;
   return nullptr;
 }
 
@@ -78,7 +82,7 @@ Model build_scene_model(const Scene& scene, const BuildOptions& options) {
   } catch (const SceneError&) {
     throw;
   } catch (const Error& e) {
-    const Location* where = element_location(scene, e.element());
+    const Location* where = element_location(scene, e.element(), e.what());
     throw SceneError(where ? *where : Location{scene.file, 0, 0}, e.what());
   }
   check_labels(scene, m);
