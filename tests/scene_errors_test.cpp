@@ -144,6 +144,15 @@ TEST(SceneErrors, OverridesOfUnknownParameters) {
   EXPECT_NE(e2.find("m=2*: "), std::string::npos) << e2;
 }
 
+TEST(SceneErrors, DeepNesting) {
+  const std::string yaml = "name: " + std::string(3000, '[') + std::string(3000, ']') + "\n";
+  EXPECT_NE(error_of(yaml).find("YAML: nested too deeply"), std::string::npos) << error_of(yaml);
+  const std::string expr =
+      "name: p\nparameters: {a: \"" + std::string(300, '(') + "1" + std::string(300, ')') + "\"}\n";
+  EXPECT_NE(error_of(expr).find("expression nested too deeply"), std::string::npos);
+  EXPECT_LT(error_of(expr).size(), 300u);  // the expression is shortened in the message
+}
+
 TEST(SceneErrors, MissingFile) {
   try {
     load_scene("/nonexistent/scene.yaml");

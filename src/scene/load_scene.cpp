@@ -1,5 +1,6 @@
 // A scene document -> Scene: parameters (dependency order), the root system, motion, initial
 // state, efforts and run settings.
+#include <yaml-cpp/depthguard.h>
 #include <yaml-cpp/yaml.h>
 
 #include <algorithm>
@@ -249,6 +250,9 @@ Scene parse_scene(std::string_view yaml, const std::string& file_name,
     read_efforts(r, doc["efforts"], scene);
     read_run(r, doc["run"], scene.run);
     scene.elements = std::move(info.elements);
+  } catch (const YAML::DeepRecursion& e) {  // yaml-cpp's depth guard (its message: "bad file")
+    throw SceneError(Location{file_name, e.mark.line + 1, e.mark.column + 1},
+                     "YAML: nested too deeply (" + std::to_string(e.depth()) + " levels)");
   } catch (const YAML::Exception& e) {  // syntax errors (and any misuse of a node)
     Location l{file_name, e.mark.is_null() ? 0 : e.mark.line + 1,
                e.mark.is_null() ? 0 : e.mark.column + 1};

@@ -125,7 +125,9 @@ void Reader::fail_expression(const YAML::Node& node, const ExpressionError& e,
   const std::string& text = node.Scalar();
   if (l.line > 0 && text.find('\n') == std::string::npos)
     l.column += (quoted ? 1 : 0) + e.column() - 1;
-  throw SceneError(l, what + ": in expression '" + text + "': " + e.what());
+  // quote the expression, but keep the one-line message readable
+  const std::string shown = text.size() <= 80 ? text : text.substr(0, 77) + "...";
+  throw SceneError(l, what + ": in expression '" + shown + "': " + e.what());
 }
 
 double Reader::number(const YAML::Node& node, const std::string& what) const {
