@@ -4,6 +4,8 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
+#include <span>
 #include <string>
 
 #include "mo2d/mechanisms.hpp"
@@ -160,6 +162,86 @@ run: {solve: forward, duration: 0.1, samples: 3}
   EXPECT_EQ(m.dof, 1);
   const ForwardResult r = forward_dynamics(m, initial_state(s, m), forward_options(s, m));
   EXPECT_LE(r.residuals.col(0).maxCoeff(), 1e-8);
+}
+
+// A user constraint (expression of a coordinate label and t) and every kind of load, written once
+// in YAML and once in C++: same model, same inverse dynamics.
+TEST(Scene, UserConstraintAndLoadsMatchCpp) {
+  const std::string text = R"yaml(
+name: loaded
+parameters: {h: 0.02}
+ground: {O: [0, 0]}
+bodies:
+  crank: {nodes: {O: [0, 0], A: [0.1, 0]}, mass: 0.5, inertia: 0.001, com: {between: [O, A]}}
+  rod: {nodes: {A: [0.1, 0], B: [0.45, 0]}, mass: 0.3, inertia: 0.003, com: {between: [A, B]}}
+joints:
+  pivot: {type: revolute, node_a: ground.O, node_b: crank.O, actuated: true}
+  pin: {type: revolute, node_a: crank.A, node_b: rod.A}
+coordinates:
+  crank.angle: {rate: {crank.w: 1}}
+constraints:
+  on_line: {psi: "rod.B.y - h * sin(t)"}
+loads:
+  gravity: [0, -9.81]
+  forces: {push: {body: rod, point: [0.45, 0], fx: -2 * cos(t), fy: 0.5}}
+  torques: {drag: {body: rod, torque: -0.1 * t}}
+  springs:
+    s: {body_a: ground, point_a: [0.6, 0.1], body_b: rod, point_b: [0.3, 0], rest_length: 0.1,
+        stiffness: 50, damping: 0.2}
+  torsional_springs: {ts: {joint: pin, stiffness: 0.5, damping: 0.01}}
+motion:
+  crank.angle: 2 * t
+run: {duration: 1, samples: 51}
+)yaml";
+  const Scene scene = parse_scene(text, "loaded.yaml");
+
+  System s("loaded");
+  s.add_ground_node("O", {0, 0});
+  s.add_body({.name = "crank",
+              .nodes = {{"O", {0, 0}}, {"A", {0.1, 0}}},
+              .mass = 0.5,
+              .inertia = 0.001,
+              .com = CenterOfMass::between("O", "A", 0.5)});
+  s.add_body({.name = "rod",
+              .nodes = {{"A", {0.1, 0}}, {"B", {0.45, 0}}},
+              .mass = 0.3,
+              .inertia = 0.003,
+              .com = CenterOfMass::between("A", "B", 0.5)});
+  s.add_revolute({.name = "pivot", .node_a = "ground.O", .node_b = "crank.O", .actuated = true});
+  s.add_revolute({.name = "pin", .node_a = "crank.A", .node_b = "rod.A"});
+  s.add_coordinate({.name = "crank.angle", .rate = {{"crank.w", 1.0}}});
+  s.add_constraint(PositionConstraintDef{
+      .name = "on_line", .args = {"rod.B.y"}, .psi = [](std::span<const Jet> x, Jet t) {
+        return x[0] - 0.02 * sin(t);
+      }});
+  s.set_gravity({0, -9.81});
+  s.add_force({.name = "push",
+               .body = "rod",
+               .point = {0.45, 0},
+               .fx = [](double t) { return -2 * std::cos(t); },
+               .fy = [](double) { return 0.5; }});
+  s.add_torque({.name = "drag", .body = "rod", .torque = [](double t) { return -0.1 * t; }});
+  s.add_spring({.name = "s",
+                .body_a = "ground",
+                .point_a = {0.6, 0.1},
+                .body_b = "rod",
+                .point_b = {0.3, 0},
+                .rest_length = 0.1,
+                .stiffness = 50,
+                .damping = 0.2});
+  s.add_torsional_spring({.name = "ts", .joint = "pin", .stiffness = 0.5, .damping = 0.01});
+  const std::vector<Prescribed> motion = {{"crank.angle", [](Jet t) { return 2.0 * t; }}};
+
+  const Model a = build_scene_model(scene), b = build_model(s);
+  expect_same_model(a, b);
+  EXPECT_EQ(a.dof, 1);
+  const InverseOptions o = inverse_options(scene);
+  const InverseResult ra = inverse_dynamics(a, scene.motion, o);
+  const InverseResult rb = inverse_dynamics(b, motion, o);
+  EXPECT_LE(max_abs_diff(ra.q0, rb.q0), kSame);
+  EXPECT_LE(max_abs_diff(ra.efforts, rb.efforts), kSame * (1 + rb.efforts.cwiseAbs().maxCoeff()));
+  EXPECT_LE(max_abs_diff(ra.reactions, rb.reactions),
+            kSame * (1 + rb.reactions.cwiseAbs().maxCoeff()));
 }
 
 }  // namespace
