@@ -11,6 +11,9 @@ packages=(
   libsundials-dev            # SUNDIALS 6.4: upcoming forward dynamics (IDA/CVODE)
   libbox2d-dev               # Box2D 2.4.1: upcoming cross-check simulations
   libcairo2-dev              # Cairo 1.16: upcoming rendering
+  libyaml-cpp-dev            # yaml-cpp 0.7: scene files (mo2d_scene, line/column of every node)
+  libcli11-dev               # CLI11 2.1 (header-only): the mo2d command line
+  nlohmann-json3-dev         # nlohmann-json 3.11 (header-only): JSON run summaries of mo2d
 )
 
 missing=()

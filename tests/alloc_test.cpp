@@ -29,6 +29,7 @@
 #include "mo2d/inverse.hpp"
 #include "mo2d/mechanisms.hpp"
 #include "mo2d/model.hpp"
+#include "mo2d/scene.hpp"
 
 #if defined(__SANITIZE_ADDRESS__)
 #define MO2D_ALLOC_TEST_ASAN 1
@@ -268,5 +269,12 @@ void expect_no_allocation(const mo2d::mechanisms::Example& ex) {
 TEST(NoAllocation, WhitworthSample) { expect_no_allocation(mo2d::mechanisms::whitworth()); }
 
 TEST(NoAllocation, Rrr3Sample) { expect_no_allocation(mo2d::mechanisms::rrr3()); }
+
+// The same run from the scene file: its motions are Expressions evaluated on Jet (recursion over
+// the parsed tree, no allocation).
+TEST(NoAllocation, Rrr3SceneSample) {
+  const mo2d::Scene s = mo2d::load_scene(std::string(MO2D_MECHANISMS_DIR) + "/rrr3.yaml");
+  expect_no_allocation({s.system, s.motion, mo2d::inverse_options(s)});
+}
 
 }  // namespace

@@ -1,0 +1,55 @@
+// mo2d forward SCENE [--set name=value]... [--out DIR]: forward dynamics of a scene from its
+// initial state; writes DIR/NAME_forward.csv and DIR/NAME_forward.json.
+#include <cstdio>
+
+#include "command.hpp"
+#include "mo2d/mo2d.hpp"
+#include "scene_options.hpp"
+#include "summary.hpp"
+#include "table.hpp"
+
+namespace mo2d::cli {
+
+namespace {
+
+int forward(const SceneOptions& o) {
+  const Scene scene = load_scene_with_overrides(o);
+  const Model model = build_scene_model(scene);
+  ForwardOptions run = forward_options(scene, model);
+  const State initial = initial_state(scene, model);
+  Progress progress(run.t0, run.t1);
+  // The progress bar rides on the stop condition, which never changes sign; it is installed only
+  // when the bar can be drawn, so runs into a pipe or a file are exactly the scene's.
+  if (isatty_stderr())
+    run.stop_when = [&progress](double t, const VectorXd&, const VectorXd&) {
+      progress.update(t);
+      return 1.0;
+    };
+  const ForwardResult r = forward_dynamics(model, initial, run);
+  progress.finish();
+  std::printf("mo2d forward dynamics: %s\n", model.name.c_str());
+  print_forward_table(model, r, run);
+  if (scene.run.csv) {
+    const std::string path = output_path(o, scene, "forward.csv");
+    write_forward_csv(r, path);
+    std::printf("  wrote %s\n", path.c_str());
+  }
+  if (scene.run.json) {
+    const std::string path = output_path(o, scene, "forward.json");
+    write_file_atomically(path, forward_summary(scene, model, r));
+    std::printf("  wrote %s\n", path.c_str());
+  }
+  return 0;
+}
+
+}  // namespace
+
+Command add_forward_command(CLI::App& app) {
+  auto o = std::make_shared<SceneOptions>();
+  CLI::App* sub = app.add_subcommand(
+      "forward", "Forward dynamics of a scene from its initial state under its loads and efforts");
+  add_scene_options(sub, *o, true);
+  return {sub, [o] { return forward(*o); }};
+}
+
+}  // namespace mo2d::cli

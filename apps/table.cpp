@@ -1,0 +1,55 @@
+// Short result tables on stdout.
+#include "table.hpp"
+
+#include <cstdio>
+
+namespace mo2d::cli {
+
+void print_inverse_table(const Model& model, const InverseResult& r, const InverseOptions& run) {
+  std::printf(
+      "  %d bodies, %d coordinates, %d quasi-velocities, %d DOF, %d samples over [%g, %g] s\n",
+      static_cast<int>(model.bodies.size()), model.n0, model.n1, model.dof,
+      static_cast<int>(r.time.size()), run.t0, run.t1);
+  std::printf("  %-24s %14s %10s %14s %10s\n", "input", "max", "at t [s]", "min", "at t [s]");
+  for (int k = 0; k < model.n_inputs(); ++k) {
+    Eigen::Index imax, imin;
+    const double vmax = r.efforts.col(k).maxCoeff(&imax);
+    const double vmin = r.efforts.col(k).minCoeff(&imin);
+    std::printf("  %-24s %14.6f %10.4f %14.6f %10.4f\n", model.inputs[k].label.c_str(), vmax,
+                r.time[imax], vmin, r.time[imin]);
+  }
+  std::printf("  max constraint residual: position %.2e m, velocity %.2e, acceleration %.2e\n",
+              r.residuals.col(0).maxCoeff(), r.residuals.col(1).maxCoeff(),
+              r.residuals.col(2).maxCoeff());
+  std::printf("  CPU time %.3f ms (%.2f us per sample)\n", 1e3 * r.cpu_seconds,
+              1e6 * r.cpu_seconds / static_cast<double>(r.time.size()));
+}
+
+double energy_error(const ForwardResult& r) {
+  if (r.time.size() == 0) return 0;
+  const double e0 = r.kinetic[0] + r.potential[0];
+  double worst = 0;
+  for (Eigen::Index k = 0; k < r.time.size(); ++k)
+    worst = std::max(
+        worst, std::abs(r.kinetic[k] + r.potential[k] - e0 - r.input_work[k] + r.dissipated[k]));
+  return worst;
+}
+
+void print_forward_table(const Model& model, const ForwardResult& r, const ForwardOptions& run) {
+  std::printf(
+      "  %d bodies, %d coordinates, %d quasi-velocities, %d DOF, %d samples over [%g, %g] s\n",
+      static_cast<int>(model.bodies.size()), model.n0, model.n1, model.dof,
+      static_cast<int>(r.time.size()), run.t0, r.stats.t_end);
+  std::printf("  integrator %s, formulation %s: %ld steps, %ld right-hand sides, %ld projections\n",
+              to_string(run.integrator), to_string(run.formulation), r.stats.steps,
+              r.stats.rhs_evaluations, r.stats.projections);
+  std::printf("  max constraint residual: position %.2e m, velocity %.2e\n",
+              r.residuals.col(0).maxCoeff(), r.residuals.col(1).maxCoeff());
+  const Eigen::Index n = r.time.size() - 1;
+  std::printf("  energy: kinetic %.6g J, potential %.6g J at the end; balance error %.2e J\n",
+              r.kinetic[n], r.potential[n], energy_error(r));
+  for (const auto& w : r.stats.warnings) std::printf("  warning: %s\n", w.c_str());
+  std::printf("  CPU time %.3f ms\n", 1e3 * r.stats.cpu_seconds);
+}
+
+}  // namespace mo2d::cli

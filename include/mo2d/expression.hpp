@@ -1,0 +1,82 @@
+#pragma once
+// Expressions of scene files: a small recursive-descent parser and an evaluator over Jet, so a
+// motion s(t) written as text gives s, s_dot and s_ddot exactly (no finite differences).
+//
+// Grammar (usual precedence, '^' binds tighter than unary minus and is right-associative):
+//   expr    := term (('+' | '-') term)*
+//   term    := unary (('*' | '/') unary)*
+//   unary   := ('-' | '+') unary | power
+//   power   := primary ('^' unary)?
+//   primary := number | name | name '(' expr (',' expr)* ')' | '(' expr ')'
+// Functions: sin cos tan exp log sqrt abs (one argument), min max atan2 (two). Constant: pi.
+// Names may contain dots after the first character ("crank.angle"); they are bound by the caller
+// to constants (parameters), the time t or variables (coordinates of a user constraint).
+#include <functional>
+#include <span>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "mo2d/error.hpp"
+#include "mo2d/jet.hpp"
+
+namespace mo2d {
+
+// A parse or binding error; column() is 1-based in the expression text.
+class ExpressionError : public Error {
+ public:
+  ExpressionError(const std::string& what, int column) : Error(what), column_(column) {}
+  int column() const { return column_; }
+
+ private:
+  int column_ = 0;
+};
+
+// What a name stands for.
+struct Binding {
+  enum class Kind { unbound, constant, time, variable } kind = Kind::unbound;
+  double value = 0;  // constant
+  int index = -1;    // variable: index into the span passed to evaluate()
+};
+
+class Expression {
+ public:
+  // Throws ExpressionError with the column of the offending character.
+  static Expression parse(std::string_view text);
+
+  const std::string& text() const { return text_; }
+  // Names the expression uses (not functions, not pi), unique, in order of first use.
+  std::vector<std::string> names() const;
+  // Resolve every name; an unbound one throws ExpressionError at its column, with a
+  // "did you mean" suggestion taken from `candidates`.
+  void bind(const std::function<Binding(const std::string& name)>& resolve,
+            std::span<const std::string> candidates = {});
+  // Value and first two derivatives (along t and the variables' own derivatives). All names must
+  // be bound. No allocation.
+  Jet evaluate(std::span<const Jet> variables = {}, Jet t = {}) const;
+  bool depends_on_time() const;
+
+ private:
+  enum class Op { number, name, neg, add, sub, mul, div, pow, call1, call2 };
+  struct Node {
+    Op op = Op::number;
+    double value = 0;
+    int a = -1, b = -1;  // children
+    int function = -1;   // call1/call2: index in the function tables
+    int column = 0;      // 1-based
+    std::string name{};  // name
+    Binding binding{};   // name
+  };
+  Jet eval(int node, std::span<const Jet> variables, Jet t) const;
+  friend class ExpressionParser;
+  std::string text_{};
+  std::vector<Node> nodes_{};
+  int root_ = -1;
+};
+
+// Edit distance (insertions, deletions, substitutions) and the closest candidate as
+// " (did you mean 'x'?)", or "" when nothing is close.
+std::size_t edit_distance(std::string_view a, std::string_view b);
+std::string did_you_mean(std::string_view name, std::span<const std::string> candidates);
+
+}  // namespace mo2d

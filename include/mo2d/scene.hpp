@@ -1,0 +1,98 @@
+#pragma once
+// Scene files: a mechanism, its loads, its motion or initial state and the run settings in one
+// YAML document (reference: docs/scene-format.md). load_scene() reads and checks the file and
+// returns the System plus everything a run needs; every error names file:line:column.
+#include <functional>
+#include <span>
+#include <string>
+#include <string_view>
+#include <utility>
+#include <vector>
+
+#include "mo2d/error.hpp"
+#include "mo2d/forward.hpp"
+#include "mo2d/inverse.hpp"
+#include "mo2d/model.hpp"
+#include "mo2d/system.hpp"
+
+namespace mo2d {
+
+// Where something was written: 1-based line and column (0 = unknown).
+struct Location {
+  std::string file{};
+  int line = 0, column = 0;
+  std::string str() const;  // "file:line:column" (or "file" when the line is unknown)
+};
+
+// An error in a scene: what() is "file:line:column: message".
+class SceneError : public Error {
+ public:
+  SceneError(const Location& where, const std::string& message);
+  const Location& where() const { return where_; }
+  const std::string& message() const { return message_; }
+
+ private:
+  Location where_{};
+  std::string message_{};
+};
+
+enum class Solve { inverse, forward };
+
+struct RunSettings {
+  Solve solve = Solve::inverse;
+  double t0 = 0;
+  double duration = 1;       // s; t1 = t0 + duration
+  int samples = 0;           // 0: 501 (inverse) or 101 (forward)
+  double tolerance = 1e-12;  // inverse: position tolerance |psi|_inf relative to the model size
+  Integrator integrator = Integrator::cvode_bdf;
+  Formulation formulation = Formulation::augmented_lagrangian;
+  double rtol = 1e-8, atol = 1e-10;  // forward, CVODE
+  double step = 1e-3;                // forward, fixed-step integrators
+  bool csv = true, json = true;      // outputs
+};
+
+// A label written in the scene (prescribed coordinate, initial value, effort) with its place, so
+// that a label the model does not have is reported at the line that wrote it.
+struct LabelUse {
+  std::string label{};
+  enum class Kind { coordinate, rate, input } kind = Kind::coordinate;
+  Location where{};
+};
+
+struct Scene {
+  std::string file{};
+  std::string name{};
+  std::vector<std::pair<std::string, double>> parameters{};  // in dependency order, evaluated
+  System system{};
+  std::vector<Prescribed> motion{};                       // inverse: one per DOF
+  InitialConditions initial{};                            // forward
+  std::vector<std::pair<std::string, Signal>> efforts{};  // forward: input label -> u(t)
+  RunSettings run{};
+  std::vector<LabelUse> labels{};
+  std::vector<std::pair<std::string, Location>> elements{};  // element name -> definition
+};
+
+// A parameter override "name=value" (value: an expression of the other parameters).
+struct ParameterOverride {
+  std::string name{};
+  std::string value{};
+};
+ParameterOverride parse_override(std::string_view name_equals_value);  // throws Error
+
+// Read a scene file / text. Throws SceneError (file:line:column) on any problem.
+Scene load_scene(const std::string& path, std::span<const ParameterOverride> overrides = {});
+Scene parse_scene(std::string_view yaml, const std::string& file_name = "<scene>",
+                  std::span<const ParameterOverride> overrides = {});
+
+// build_model() plus the checks that need the model: the labels the scene uses exist (else a
+// SceneError at their line, with a suggestion); a build error is reported against the file.
+Model build_scene_model(const Scene& scene, const BuildOptions& options = {});
+
+// Run options of the scene's settings.
+InverseOptions inverse_options(const Scene& scene);
+// Efforts are ordered like Model::inputs (inputs without an effort get none: zero).
+ForwardOptions forward_options(const Scene& scene, const Model& model);
+// Consistent initial state of a forward run (consistent_state with the scene's initial values).
+State initial_state(const Scene& scene, const Model& model);
+
+}  // namespace mo2d

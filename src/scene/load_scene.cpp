@@ -1,0 +1,272 @@
+// A scene document -> Scene: parameters (dependency order), the root system, motion, initial
+// state, efforts and run settings.
+#include <yaml-cpp/depthguard.h>
+#include <yaml-cpp/yaml.h>
+
+#include <algorithm>
+#include <cctype>
+#include <cmath>
+#include <fstream>
+#include <functional>
+#include <map>
+#include <sstream>
+
+#include "load_system.hpp"
+#include "mo2d/scene.hpp"
+#include "reader.hpp"
+
+namespace mo2d {
+
+namespace scene_detail {
+namespace {
+
+bool is_identifier(const std::string& s) {
+  if (s.empty() || !(std::isalpha(static_cast<unsigned char>(s[0])) || s[0] == '_')) return false;
+  return std::all_of(s.begin(), s.end(), [](char ch) {
+    return std::isalnum(static_cast<unsigned char>(ch)) || ch == '_';
+  });
+}
+
+bool is_reserved(const std::string& s) {
+  static const char* reserved[] = {"t",   "pi",   "sin", "cos", "tan", "exp",
+                                   "log", "sqrt", "abs", "min", "max", "atan2"};
+  return std::any_of(std::begin(reserved), std::end(reserved),
+                     [&](const char* r) { return s == r; });
+}
+
+// One parameter definition: its text and where it came from (a YAML node or --set).
+struct Definition {
+  YAML::Node node{};
+  std::string text{};
+  bool from_command_line = false;
+  Expression expr{};
+  int state = 0;  // 0 new, 1 being evaluated, 2 done
+};
+
+void read_parameters(Reader& r, const YAML::Node& node,
+                     std::span<const ParameterOverride> overrides, Scene& scene) {
+  std::map<std::string, Definition> defs;
+  std::vector<std::string> order;
+  for (const auto& [key, value] : r.entries(node, "parameters")) {
+    const std::string& name = key.Scalar();
+    if (!is_identifier(name) || is_reserved(name))
+      r.fail(key, "parameter '" + name +
+                      "': a parameter name is a letter or '_' followed by "
+                      "letters, digits or '_', and not t, pi or a function name");
+    if (!value.IsScalar())
+      r.fail(value, "parameter '" + name + "': expected a number or an expression, got " +
+                        type_name(value));
+    defs[name] = Definition{value, value.Scalar(), false, {}, 0};
+    order.push_back(name);
+  }
+  r.parameter_names = order;
+  for (const auto& o : overrides) {
+    auto it = defs.find(o.name);
+    if (it == defs.end())
+      throw SceneError(Location{"--set", 0, 0}, "'" + o.name + "' is not a parameter of " + r.file +
+                                                    did_you_mean(o.name, order));
+    it->second.text = o.value;
+    it->second.from_command_line = true;
+  }
+  auto fail = [&](const Definition& d, const std::string& name, const std::string& what,
+                  int column) {
+    if (d.from_command_line)
+      throw SceneError(Location{"--set", 0, 0}, name + "=" + d.text + ": " + what);
+    if (column > 0)
+      r.fail_expression(d.node, ExpressionError(what, column), "parameter '" + name + "'");
+    r.fail(d.node, "parameter '" + name + "': " + what);
+  };
+  for (auto& [name, d] : defs) {
+    try {
+      d.expr = Expression::parse(d.text);
+    } catch (const ExpressionError& e) {
+      fail(d, name, e.what(), e.column());
+    }
+  }
+  std::vector<std::string> stack;
+  std::function<void(const std::string&)> evaluate = [&](const std::string& name) {
+    Definition& d = defs[name];
+    if (d.state == 2) return;
+    if (d.state == 1) {
+      std::string cycle;
+      auto it = std::find(stack.begin(), stack.end(), name);
+      for (; it != stack.end(); ++it) cycle += *it + " -> ";
+      fail(defs[name], name, "parameters depend on each other in a cycle: " + cycle + name, 0);
+    }
+    d.state = 1;
+    stack.push_back(name);
+    for (const auto& n : d.expr.names())
+      if (defs.count(n)) evaluate(n);
+    try {
+      d.expr.bind(
+          [&](const std::string& n) {
+            if (n == "t") throw ExpressionError("a parameter is a constant: it may not use t", 0);
+            return r.parameter_binding(n);
+          },
+          order);
+    } catch (const ExpressionError& e) {
+      fail(d, name, e.what(), e.column());
+    }
+    const double v = d.expr.evaluate().v;
+    if (!std::isfinite(v)) fail(d, name, "the value is not a finite number", 0);
+    r.parameters[name] = v;
+    scene.parameters.emplace_back(name, v);
+    stack.pop_back();
+    d.state = 2;
+  };
+  for (const auto& name : order) evaluate(name);
+}
+
+void read_motion(const Reader& r, const YAML::Node& node, Scene& scene) {
+  for (const auto& [key, value] : r.entries(node, "motion")) {
+    const std::string label = key.Scalar();
+    auto e = r.time_function(value, "motion." + label);
+    scene.motion.push_back({label, [e](Jet t) { return e->evaluate({}, t); }});
+    scene.labels.push_back({label, LabelUse::Kind::coordinate, r.at(key)});
+  }
+}
+
+void read_initial(const Reader& r, const YAML::Node& node, Scene& scene) {
+  if (!node.IsDefined() || node.IsNull()) return;
+  r.check_keys(node, {"positions", "velocities"}, "initial");
+  for (const auto& [key, value] : r.entries(node["positions"], "initial.positions")) {
+    scene.initial.positions.emplace_back(key.Scalar(),
+                                         r.number(value, "initial.positions." + key.Scalar()));
+    scene.labels.push_back({key.Scalar(), LabelUse::Kind::coordinate, r.at(key)});
+  }
+  for (const auto& [key, value] : r.entries(node["velocities"], "initial.velocities")) {
+    scene.initial.velocities.emplace_back(key.Scalar(),
+                                          r.number(value, "initial.velocities." + key.Scalar()));
+    scene.labels.push_back({key.Scalar(), LabelUse::Kind::rate, r.at(key)});
+  }
+}
+
+void read_efforts(const Reader& r, const YAML::Node& node, Scene& scene) {
+  for (const auto& [key, value] : r.entries(node, "efforts")) {
+    auto e = r.time_function(value, "efforts." + key.Scalar());
+    scene.efforts.emplace_back(key.Scalar(), [e](double t) { return e->evaluate({}, Jet(t)).v; });
+    scene.labels.push_back({key.Scalar(), LabelUse::Kind::input, r.at(key)});
+  }
+}
+
+template <class E>
+E choice(const Reader& r, const YAML::Node& node, const std::string& what,
+         const std::vector<std::pair<std::string, E>>& options) {
+  const std::string s = r.string(node, what);
+  std::vector<std::string> names;
+  for (const auto& [n, v] : options) {
+    if (n == s) return v;
+    names.push_back(n);
+  }
+  std::string list;
+  for (const auto& n : names) list += (list.empty() ? "" : ", ") + n;
+  r.fail(node, what + ": unknown value '" + s + "'" + did_you_mean(s, names) +
+                   "; expected one of: " + list);
+}
+
+void read_run(const Reader& r, const YAML::Node& node, RunSettings& run) {
+  if (!node.IsDefined() || node.IsNull()) return;
+  r.check_keys(node,
+               {"solve", "t0", "duration", "samples", "tolerance", "integrator", "formulation",
+                "rtol", "atol", "step", "outputs"},
+               "run");
+  if (node["solve"].IsDefined())
+    run.solve = choice<Solve>(r, node["solve"], "run.solve",
+                              {{"inverse", Solve::inverse}, {"forward", Solve::forward}});
+  run.t0 = r.number_or(node, "t0", run.t0, "run");
+  run.duration = r.number_or(node, "duration", run.duration, "run");
+  if (run.duration <= 0) r.fail(node["duration"], "run.duration: must be > 0 s");
+  if (node["samples"].IsDefined()) {
+    run.samples = r.integer(node["samples"], "run.samples");
+    if (run.samples < 2) r.fail(node["samples"], "run.samples: must be >= 2");
+  }
+  auto positive = [&](const char* key, double& v) {
+    v = r.number_or(node, key, v, "run");
+    if (!(v > 0)) r.fail(node[key], std::string("run.") + key + ": must be > 0");
+  };
+  positive("tolerance", run.tolerance);
+  positive("rtol", run.rtol);
+  positive("atol", run.atol);
+  positive("step", run.step);
+  if (node["integrator"].IsDefined())
+    run.integrator = choice<Integrator>(r, node["integrator"], "run.integrator",
+                                        {{"cvode_bdf", Integrator::cvode_bdf},
+                                         {"cvode_adams", Integrator::cvode_adams},
+                                         {"rk4", Integrator::rk4},
+                                         {"baumgarte", Integrator::baumgarte}});
+  if (node["formulation"].IsDefined())
+    run.formulation =
+        choice<Formulation>(r, node["formulation"], "run.formulation",
+                            {{"augmented_lagrangian", Formulation::augmented_lagrangian},
+                             {"lagrange", Formulation::lagrange},
+                             {"null_space", Formulation::null_space}});
+  if (node["outputs"].IsDefined()) {
+    run.csv = run.json = false;
+    for (const auto& o : node["outputs"].IsSequence() ? node["outputs"] : YAML::Node()) {
+      const std::string s = r.string(o, "run.outputs");
+      if (s == "csv")
+        run.csv = true;
+      else if (s == "json")
+        run.json = true;
+      else
+        r.fail(o, "run.outputs: unknown output '" + s + "'; expected csv or json");
+    }
+    if (!node["outputs"].IsSequence())
+      r.fail(node["outputs"], "run.outputs: expected a list such as [csv, json]");
+  }
+}
+
+}  // namespace
+}  // namespace scene_detail
+
+Scene parse_scene(std::string_view yaml, const std::string& file_name,
+                  std::span<const ParameterOverride> overrides) {
+  using namespace scene_detail;
+  Reader r;
+  r.file = file_name;
+  Scene scene;
+  scene.file = file_name;
+  try {
+    const YAML::Node doc = YAML::Load(std::string(yaml));
+    if (!doc.IsMap())
+      throw SceneError(Location{file_name, 1, 1},
+                       std::string("a scene is a map of keys (name, bodies, joints, ...), got ") +
+                           type_name(doc));
+    r.check_keys(doc,
+                 {"name", "parameters", "ground", "bodies", "joints", "coordinates", "constraints",
+                  "loads", "subsystems", "instances", "motion", "initial", "efforts", "run"},
+                 "scene");
+    scene.name = doc["name"].IsDefined() ? r.string(doc["name"], "name") : "scene";
+    read_parameters(r, doc["parameters"], overrides, scene);
+    scene.system = System(scene.name);
+    Subsystems library;
+    if (doc["subsystems"].IsDefined()) {
+      r.entries(doc["subsystems"], "subsystems");  // a map of named blocks
+      library.definitions.reset(doc["subsystems"]);
+    }
+    SystemInfo info = read_system(r, doc, scene.system, true, library);
+    read_motion(r, doc["motion"], scene);
+    read_initial(r, doc["initial"], scene);
+    read_efforts(r, doc["efforts"], scene);
+    read_run(r, doc["run"], scene.run);
+    scene.elements = std::move(info.elements);
+  } catch (const YAML::DeepRecursion& e) {  // yaml-cpp's depth guard (its message: "bad file")
+    throw SceneError(Location{file_name, e.mark.line + 1, e.mark.column + 1},
+                     "YAML: nested too deeply (" + std::to_string(e.depth()) + " levels)");
+  } catch (const YAML::Exception& e) {  // syntax errors (and any misuse of a node)
+    Location l{file_name, e.mark.is_null() ? 0 : e.mark.line + 1,
+               e.mark.is_null() ? 0 : e.mark.column + 1};
+    throw SceneError(l, "YAML: " + e.msg);
+  }
+  return scene;
+}
+
+Scene load_scene(const std::string& path, std::span<const ParameterOverride> overrides) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw SceneError(Location{path, 0, 0}, "cannot open the scene file");
+  std::ostringstream text;
+  text << in.rdbuf();
+  return parse_scene(text.str(), path, overrides);
+}
+
+}  // namespace mo2d

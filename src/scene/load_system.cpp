@@ -1,0 +1,364 @@
+// One system block of a scene -> System (keys: docs/scene-format.md, "System blocks").
+#include "load_system.hpp"
+
+#include <algorithm>
+
+namespace mo2d::scene_detail {
+
+namespace {
+
+struct Context {
+  const Reader& r;
+  System& out;
+  SystemInfo info{};
+  std::vector<std::string> revolutes{};
+};
+
+void check_node(const Context& c, const YAML::Node& node, const std::string& what) {
+  const std::string label = c.r.string(node, what);
+  if (std::find(c.info.nodes.begin(), c.info.nodes.end(), label) == c.info.nodes.end())
+    c.r.fail(node, what + ": undefined node '" + label + "'" + did_you_mean(label, c.info.nodes) +
+                       " (nodes are written body.node or ground.node)");
+}
+
+std::string node_ref(const Context& c, const YAML::Node& map, const char* key,
+                     const std::string& what) {
+  const YAML::Node n = c.r.required(map, key, what);
+  check_node(c, n, what + "." + key);
+  return n.Scalar();
+}
+
+std::string body_ref(const Context& c, const YAML::Node& map, const char* key,
+                     const std::string& what, bool ground_allowed) {
+  const YAML::Node n = c.r.required(map, key, what);
+  const std::string name = c.r.string(n, what + "." + key);
+  if (ground_allowed && name == "ground") return name;
+  if (std::find(c.info.bodies.begin(), c.info.bodies.end(), name) == c.info.bodies.end())
+    c.r.fail(n, what + "." + key + ": undefined body '" + name + "'" +
+                    did_you_mean(name, c.info.bodies));
+  return name;
+}
+
+void check_plain_name(const Reader& r, const YAML::Node& key, const std::string& what) {
+  const std::string& s = key.Scalar();
+  if (s.find_first_of(".,: \t") != std::string::npos)
+    r.fail(key, what + " '" + s + "': names may not contain '.', ',', ':' or spaces");
+  if (s == "ground" && what != "ground node")
+    r.fail(key, what + ": 'ground' is reserved for the base body");
+}
+
+void read_ground(Context& c, const YAML::Node& node) {
+  for (const auto& [key, value] : c.r.entries(node, "ground")) {
+    check_plain_name(c.r, key, "ground node");
+    const std::string name = key.Scalar();
+    c.out.add_ground_node(name, c.r.vec2(value, "ground." + name));
+    c.info.nodes.push_back("ground." + name);
+  }
+}
+
+CenterOfMass read_com(const Reader& r, const YAML::Node& node, const BodyDef& b,
+                      const std::string& what) {
+  std::vector<std::string> local;
+  for (const auto& n : b.nodes) local.push_back(n.name);
+  auto check_local = [&](const YAML::Node& n, const std::string& w) {
+    const std::string name = r.string(n, w);
+    if (std::find(local.begin(), local.end(), name) == local.end())
+      r.fail(n,
+             w + ": body '" + b.name + "' has no node '" + name + "'" + did_you_mean(name, local));
+    return name;
+  };
+  if (node.IsScalar()) return CenterOfMass::at_node(check_local(node, what));
+  r.check_keys(node, {"node", "between", "gamma", "rho", "point"}, what);
+  const int given =
+      node["node"].IsDefined() + node["between"].IsDefined() + node["point"].IsDefined();
+  if (given != 1) r.fail(node, what + ": give exactly one of 'node', 'between' or 'point'");
+  if (node["node"].IsDefined())
+    return CenterOfMass::at_node(check_local(node["node"], what + ".node"));
+  if (node["point"].IsDefined())
+    return CenterOfMass::at_point(r.vec2(node["point"], what + ".point"));
+  const YAML::Node between = node["between"];
+  if (!between.IsSequence() || between.size() != 2)
+    r.fail(between, what + ".between: expected two node names [i, j]");
+  return CenterOfMass::between(
+      check_local(between[0], what + ".between"), check_local(between[1], what + ".between"),
+      r.number_or(node, "gamma", 0.5, what), r.number_or(node, "rho", 0.0, what));
+}
+
+void read_bodies(Context& c, const YAML::Node& node) {
+  const Reader& r = c.r;
+  for (const auto& [key, value] : r.entries(node, "bodies")) {
+    check_plain_name(r, key, "body");
+    const std::string what = "body '" + key.Scalar() + "'";
+    r.check_keys(value, {"nodes", "mass", "inertia", "com"}, what);
+    BodyDef b;
+    b.name = key.Scalar();
+    const YAML::Node nodes = r.required(value, "nodes", what);
+    const Entries entries = r.entries(nodes, what + ".nodes");
+    if (entries.empty()) r.fail(nodes, what + ".nodes: a body needs at least one node");
+    for (const auto& [nk, nv] : entries) {
+      check_plain_name(r, nk, "node");
+      b.nodes.push_back({nk.Scalar(), r.vec2(nv, what + ".nodes." + nk.Scalar())});
+    }
+    const YAML::Node mass = r.required(value, "mass", what);
+    b.mass = r.number(mass, what + ".mass");
+    if (b.mass < 0) r.fail(mass, what + ".mass: a mass must be >= 0 kg");
+    if (value["inertia"].IsDefined()) {
+      b.inertia = r.number(value["inertia"], what + ".inertia");
+      if (b.inertia < 0)
+        r.fail(value["inertia"], what + ".inertia: an inertia must be >= 0 kg m^2");
+    }
+    if (value["com"].IsDefined()) b.com = read_com(r, value["com"], b, what + ".com");
+    for (const auto& n : b.nodes) c.info.nodes.push_back(b.name + "." + n.name);
+    c.info.bodies.push_back(b.name);
+    c.info.elements.emplace_back(b.name, r.at(key));
+    c.out.add_body(std::move(b));
+  }
+}
+
+void read_joints(Context& c, const YAML::Node& node) {
+  const Reader& r = c.r;
+  for (const auto& [key, value] : r.entries(node, "joints")) {
+    check_plain_name(r, key, "joint");
+    const std::string name = key.Scalar();
+    const std::string what = "joint '" + name + "'";
+    if (!value.IsMap()) r.fail(value, what + ": expected a map, got " + type_name(value));
+    const std::string type = r.string(r.required(value, "type", what), what + ".type");
+    if (type == "revolute") {
+      r.check_keys(value, {"type", "node_a", "node_b", "actuated"}, what);
+      RevoluteDef j;
+      j.name = name;
+      j.node_a = node_ref(c, value, "node_a", what);
+      j.node_b = node_ref(c, value, "node_b", what);
+      if (value["actuated"].IsDefined())
+        j.actuated = r.boolean(value["actuated"], what + ".actuated");
+      c.out.add_revolute(std::move(j));
+      c.revolutes.push_back(name);
+    } else if (type == "prismatic") {
+      r.check_keys(value, {"type", "axis_from", "axis_to", "slider", "actuated"}, what);
+      PrismaticDef j;
+      j.name = name;
+      j.axis_from = node_ref(c, value, "axis_from", what);
+      j.axis_to = node_ref(c, value, "axis_to", what);
+      j.slider = node_ref(c, value, "slider", what);
+      if (value["actuated"].IsDefined())
+        j.actuated = r.boolean(value["actuated"], what + ".actuated");
+      c.out.add_prismatic(std::move(j));
+    } else if (type == "pin_in_slot") {
+      r.check_keys(value,
+                   {"type", "axis_from", "axis_to", "pin", "actuated_slide", "actuated_rotation"},
+                   what);
+      PinInSlotDef j;
+      j.name = name;
+      j.axis_from = node_ref(c, value, "axis_from", what);
+      j.axis_to = node_ref(c, value, "axis_to", what);
+      j.pin = node_ref(c, value, "pin", what);
+      if (value["actuated_slide"].IsDefined())
+        j.actuated_slide = r.boolean(value["actuated_slide"], what + ".actuated_slide");
+      if (value["actuated_rotation"].IsDefined())
+        j.actuated_rotation = r.boolean(value["actuated_rotation"], what + ".actuated_rotation");
+      c.out.add_pin_in_slot(std::move(j));
+    } else {
+      const std::vector<std::string> types = {"revolute", "prismatic", "pin_in_slot"};
+      r.fail(value["type"], what + ": unknown joint type '" + type + "'" +
+                                did_you_mean(type, types) +
+                                "; expected revolute, prismatic or pin_in_slot");
+    }
+    c.info.elements.emplace_back(name, r.at(key));
+  }
+}
+
+void read_coordinates(Context& c, const YAML::Node& node) {
+  const Reader& r = c.r;
+  for (const auto& [key, value] : r.entries(node, "coordinates")) {
+    const std::string what = "coordinate '" + key.Scalar() + "'";
+    r.check_keys(value, {"rate", "initial"}, what);
+    CoordinateDef d;
+    d.name = key.Scalar();
+    const YAML::Node rate = r.required(value, "rate", what);
+    for (const auto& [rk, rv] : r.entries(rate, what + ".rate"))
+      d.rate.emplace_back(rk.Scalar(), r.number(rv, what + ".rate." + rk.Scalar()));
+    if (d.rate.empty()) r.fail(rate, what + ".rate: needs at least one quasi-velocity label");
+    if (value["initial"].IsDefined()) d.initial = r.number(value["initial"], what + ".initial");
+    c.info.elements.emplace_back(d.name, r.at(key));
+    c.out.add_coordinate(std::move(d));
+  }
+}
+
+void read_constraints(Context& c, const YAML::Node& node) {
+  const Reader& r = c.r;
+  for (const auto& [key, value] : r.entries(node, "constraints")) {
+    check_plain_name(r, key, "constraint");
+    const std::string what = "constraint '" + key.Scalar() + "'";
+    r.check_keys(value, {"psi"}, what);
+    const YAML::Node psi = r.required(value, "psi", what);
+    auto e = std::make_shared<Expression>(r.expression(psi, what + ".psi"));
+    PositionConstraintDef d;
+    d.name = key.Scalar();
+    // names: parameters, then t, then coordinate labels (the arguments, in order of first use)
+    try {
+      e->bind([&](const std::string& n) {
+        if (auto b = r.parameter_binding(n); b.kind != Binding::Kind::unbound) return b;
+        if (n == "t") return Binding{Binding::Kind::time, 0, -1};
+        d.args.push_back(n);
+        return Binding{Binding::Kind::variable, 0, static_cast<int>(d.args.size()) - 1};
+      });
+    } catch (const ExpressionError& err) {
+      r.fail_expression(psi, err, what + ".psi");
+    }
+    // the same name used twice must map to one argument
+    std::vector<std::string> unique;
+    for (const auto& a : d.args)
+      if (std::find(unique.begin(), unique.end(), a) == unique.end()) unique.push_back(a);
+    e->bind([&](const std::string& n) {
+      if (auto b = r.parameter_binding(n); b.kind != Binding::Kind::unbound) return b;
+      if (n == "t") return Binding{Binding::Kind::time, 0, -1};
+      const auto it = std::find(unique.begin(), unique.end(), n);
+      return Binding{Binding::Kind::variable, 0, static_cast<int>(it - unique.begin())};
+    });
+    d.args = unique;
+    if (d.args.empty()) r.fail(psi, what + ".psi: a constraint must use at least one coordinate");
+    d.psi = [e](std::span<const Jet> x, Jet t) { return e->evaluate(x, t); };
+    c.info.elements.emplace_back(d.name, r.at(key));
+    c.out.add_constraint(std::move(d));
+  }
+}
+
+Signal signal(const Reader& r, const YAML::Node& node, const std::string& what) {
+  if (!node.IsDefined()) return {};
+  auto e = r.time_function(node, what);
+  return [e](double t) { return e->evaluate({}, Jet(t)).v; };
+}
+
+double nonnegative(const Reader& r, const YAML::Node& map, const char* key,
+                   const std::string& what) {
+  const double v = r.number_or(map, key, 0.0, what);
+  if (v < 0) r.fail(map[key], what + "." + key + ": must be >= 0");
+  return v;
+}
+
+void read_loads(Context& c, const YAML::Node& node, bool root) {
+  const Reader& r = c.r;
+  if (!node.IsDefined() || node.IsNull()) return;
+  if (root)
+    r.check_keys(node, {"gravity", "forces", "torques", "springs", "torsional_springs"}, "loads");
+  else
+    r.check_keys(node, {"forces", "torques", "springs", "torsional_springs"},
+                 "loads (gravity belongs to the root scene)");
+  if (node["gravity"].IsDefined()) c.out.set_gravity(r.vec2(node["gravity"], "loads.gravity"));
+  for (const auto& [key, value] : r.entries(node["forces"], "loads.forces")) {
+    check_plain_name(r, key, "force");
+    const std::string what = "force '" + key.Scalar() + "'";
+    r.check_keys(value, {"body", "point", "fx", "fy"}, what);
+    ForceDef f;
+    f.name = key.Scalar();
+    f.body = body_ref(c, value, "body", what, false);
+    f.point = r.vec2(r.required(value, "point", what), what + ".point");
+    f.fx = signal(r, value["fx"], what + ".fx");
+    f.fy = signal(r, value["fy"], what + ".fy");
+    c.info.elements.emplace_back(f.name, r.at(key));
+    c.out.add_force(std::move(f));
+  }
+  for (const auto& [key, value] : r.entries(node["torques"], "loads.torques")) {
+    check_plain_name(r, key, "torque");
+    const std::string what = "torque '" + key.Scalar() + "'";
+    r.check_keys(value, {"body", "torque"}, what);
+    TorqueDef t;
+    t.name = key.Scalar();
+    t.body = body_ref(c, value, "body", what, false);
+    t.torque = signal(r, r.required(value, "torque", what), what + ".torque");
+    c.info.elements.emplace_back(t.name, r.at(key));
+    c.out.add_torque(std::move(t));
+  }
+  for (const auto& [key, value] : r.entries(node["springs"], "loads.springs")) {
+    check_plain_name(r, key, "spring");
+    const std::string what = "spring '" + key.Scalar() + "'";
+    r.check_keys(value,
+                 {"body_a", "point_a", "body_b", "point_b", "rest_length", "stiffness", "damping"},
+                 what);
+    SpringDef s;
+    s.name = key.Scalar();
+    s.body_a = body_ref(c, value, "body_a", what, true);
+    s.point_a = r.vec2(r.required(value, "point_a", what), what + ".point_a");
+    s.body_b = body_ref(c, value, "body_b", what, true);
+    s.point_b = r.vec2(r.required(value, "point_b", what), what + ".point_b");
+    s.rest_length = nonnegative(r, value, "rest_length", what);
+    s.stiffness = nonnegative(r, value, "stiffness", what);
+    s.damping = nonnegative(r, value, "damping", what);
+    c.info.elements.emplace_back(s.name, r.at(key));
+    c.out.add_spring(std::move(s));
+  }
+  for (const auto& [key, value] : r.entries(node["torsional_springs"], "loads.torsional_springs")) {
+    check_plain_name(r, key, "torsional spring");
+    const std::string what = "torsional spring '" + key.Scalar() + "'";
+    r.check_keys(value, {"joint", "stiffness", "damping", "rest"}, what);
+    TorsionalSpringDef s;
+    s.name = key.Scalar();
+    const YAML::Node joint = r.required(value, "joint", what);
+    s.joint = r.string(joint, what + ".joint");
+    if (std::find(c.revolutes.begin(), c.revolutes.end(), s.joint) == c.revolutes.end())
+      r.fail(joint, what + ".joint: undefined revolute joint '" + s.joint + "'" +
+                        did_you_mean(s.joint, c.revolutes));
+    s.stiffness = nonnegative(r, value, "stiffness", what);
+    s.damping = nonnegative(r, value, "damping", what);
+    if (value["rest"].IsDefined()) s.rest = r.number(value["rest"], what + ".rest");
+    c.info.elements.emplace_back(s.name, r.at(key));
+    c.out.add_torsional_spring(std::move(s));
+  }
+}
+
+const BuiltSubsystem& subsystem(const Reader& r, const YAML::Node& ref, Subsystems& lib) {
+  const std::string name = r.string(ref, "instance.subsystem");
+  if (auto it = lib.built.find(name); it != lib.built.end()) return it->second;
+  std::vector<std::string> names;
+  YAML::Node def;
+  bool found = false;
+  for (const auto& [k, v] : r.entries(lib.definitions, "subsystems")) {
+    names.push_back(k.Scalar());
+    if (k.Scalar() == name) def.reset(v), found = true;
+  }
+  if (!found) r.fail(ref, "undefined subsystem '" + name + "'" + did_you_mean(name, names));
+  if (!lib.building.insert(name).second)
+    r.fail(ref, "subsystem '" + name + "' contains itself (through its instances)");
+  r.check_keys(def, kSystemKeys, "subsystem '" + name + "'");
+  auto s = std::make_shared<System>(name);
+  SystemInfo info = read_system(r, def, *s, false, lib);
+  lib.building.erase(name);
+  return lib.built[name] = BuiltSubsystem{std::move(s), std::move(info)};
+}
+
+void read_instances(Context& c, const YAML::Node& node, Subsystems& lib) {
+  const Reader& r = c.r;
+  for (const auto& [key, value] : r.entries(node, "instances")) {
+    check_plain_name(r, key, "instance");
+    const std::string name = key.Scalar();
+    const std::string what = "instance '" + name + "'";
+    r.check_keys(value, {"subsystem", "offset", "angle"}, what);
+    const BuiltSubsystem& sub = subsystem(r, r.required(value, "subsystem", what), lib);
+    Placement p;
+    if (value["offset"].IsDefined()) p.offset = r.vec2(value["offset"], what + ".offset");
+    p.angle = r.number_or(value, "angle", 0.0, what);
+    c.out.add_instance(name, *sub.system, p);
+    for (const auto& n : sub.info.nodes) c.info.nodes.push_back(name + "." + n);
+    for (const auto& b : sub.info.bodies) c.info.bodies.push_back(name + "." + b);
+    for (const auto& [e, l] : sub.info.elements) c.info.elements.emplace_back(name + "." + e, l);
+    c.info.elements.emplace_back(name, r.at(key));
+  }
+}
+
+}  // namespace
+
+SystemInfo read_system(const Reader& r, const YAML::Node& block, System& out, bool root,
+                       Subsystems& library) {
+  Context c{r, out};
+  // bodies and instances first: joints and loads refer to their nodes
+  read_ground(c, block["ground"]);
+  read_bodies(c, block["bodies"]);
+  read_instances(c, block["instances"], library);
+  read_joints(c, block["joints"]);
+  read_coordinates(c, block["coordinates"]);
+  read_constraints(c, block["constraints"]);
+  read_loads(c, block["loads"], root);
+  return std::move(c.info);
+}
+
+}  // namespace mo2d::scene_detail

@@ -1,0 +1,43 @@
+#pragma once
+// Reading one system block (ground, bodies, joints, coordinates, constraints, loads, instances) of
+// a scene: the root document and each entry of `subsystems` use the same keys.
+#include <map>
+#include <memory>
+#include <set>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "reader.hpp"
+
+namespace mo2d::scene_detail {
+
+// What a parent may refer to in a system: node labels ("body.node", "ground.node",
+// "instance.body.node"), body names, revolute joints, and where each element was defined.
+struct SystemInfo {
+  std::vector<std::string> nodes{};
+  std::vector<std::string> bodies{};
+  std::vector<std::pair<std::string, Location>> elements{};
+};
+
+struct BuiltSubsystem {
+  std::shared_ptr<const System> system{};
+  SystemInfo info{};
+};
+
+// The `subsystems` map, built on first use (an instance may use a subsystem defined anywhere in
+// the map; a subsystem that contains itself is an error).
+struct Subsystems {
+  YAML::Node definitions{};
+  std::map<std::string, BuiltSubsystem> built{};
+  std::set<std::string> building{};
+};
+
+inline constexpr std::initializer_list<const char*> kSystemKeys = {
+    "ground", "bodies", "joints", "coordinates", "constraints", "loads", "instances"};
+
+// Fill `out` from `block`; root: gravity is allowed in loads.
+SystemInfo read_system(const Reader& r, const YAML::Node& block, System& out, bool root,
+                       Subsystems& library);
+
+}  // namespace mo2d::scene_detail

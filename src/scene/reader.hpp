@@ -1,0 +1,58 @@
+#pragma once
+// Typed, located reading of YAML nodes for the scene loader: every accessor either returns the
+// value or throws SceneError at the node's line and column with what was expected.
+#include <yaml-cpp/yaml.h>
+
+#include <initializer_list>
+#include <memory>
+#include <string>
+#include <unordered_map>
+#include <utility>
+#include <vector>
+
+#include "mo2d/expression.hpp"
+#include "mo2d/scene.hpp"
+
+namespace mo2d::scene_detail {
+
+using Entries = std::vector<std::pair<YAML::Node, YAML::Node>>;  // (key, value) in file order
+
+struct Reader {
+  std::string file{};
+  std::unordered_map<std::string, double> parameters{};  // evaluated
+  std::vector<std::string> parameter_names{};
+
+  Location at(const YAML::Node& node) const;
+  [[noreturn]] void fail(const YAML::Node& node, const std::string& message) const;
+
+  // `node` must be a map whose keys are all in `allowed` (else "unknown key ... did you mean").
+  void check_keys(const YAML::Node& node, std::initializer_list<const char*> allowed,
+                  const std::string& what) const;
+  // The entries of a map (null = empty), keys checked to be unique scalars.
+  Entries entries(const YAML::Node& node, const std::string& what) const;
+  // map[key], which must exist.
+  YAML::Node required(const YAML::Node& map, const char* key, const std::string& what) const;
+
+  std::string string(const YAML::Node& node, const std::string& what) const;
+  bool boolean(const YAML::Node& node, const std::string& what) const;
+  int integer(const YAML::Node& node, const std::string& what) const;
+  // A number: a constant expression of the parameters.
+  double number(const YAML::Node& node, const std::string& what) const;
+  double number_or(const YAML::Node& map, const char* key, double fallback,
+                   const std::string& what) const;
+  Vec2 vec2(const YAML::Node& node, const std::string& what) const;
+  std::vector<std::string> strings(const YAML::Node& node, const std::string& what) const;
+  // An expression of t (and the parameters), shared by the closures that evaluate it.
+  std::shared_ptr<const Expression> time_function(const YAML::Node& node,
+                                                  const std::string& what) const;
+  // Parse a scalar as an expression; errors point at the offending column of the file.
+  Expression expression(const YAML::Node& node, const std::string& what) const;
+  // Rethrow an ExpressionError from the text of `node` at its file position.
+  [[noreturn]] void fail_expression(const YAML::Node& node, const ExpressionError& e,
+                                    const std::string& what) const;
+  Binding parameter_binding(const std::string& name) const;
+};
+
+const char* type_name(const YAML::Node& node);
+
+}  // namespace mo2d::scene_detail

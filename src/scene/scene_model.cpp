@@ -1,0 +1,128 @@
+// From a loaded Scene to a Model and run options; errors that need the model are reported at the
+// line of the scene that caused them.
+#include <algorithm>
+#include <cctype>
+
+#include "mo2d/expression.hpp"
+#include "mo2d/scene.hpp"
+
+namespace mo2d {
+
+std::string Location::str() const {
+  if (line <= 0) return file;
+  return file + ":" + std::to_string(line) + ":" + std::to_string(column);
+}
+
+SceneError::SceneError(const Location& where, const std::string& message)
+    : Error(where.str() + ": " + message), where_(where), message_(message) {}
+
+ParameterOverride parse_override(std::string_view text) {
+  const size_t eq = text.find('=');
+  auto trim = [](std::string_view s) {
+    while (!s.empty() && std::isspace(static_cast<unsigned char>(s.front()))) s.remove_prefix(1);
+    while (!s.empty() && std::isspace(static_cast<unsigned char>(s.back()))) s.remove_suffix(1);
+    return std::string(s);
+  };
+  if (eq == std::string_view::npos || trim(text.substr(0, eq)).empty() ||
+      trim(text.substr(eq + 1)).empty())
+    throw Error("--set " + std::string(text) + ": expected name=value");
+  return {trim(text.substr(0, eq)), trim(text.substr(eq + 1))};
+}
+
+namespace {
+
+const Location* element_location(const Scene& s, const std::string& element,
+                                 const std::string& message) {
+  for (const auto& [name, where] : s.elements)
+    if (name == element) return &where;
+  // otherwise the first element the message names ("coordinate 'crank.angle': ...")
+  for (const auto& [name, where] : s.elements)
+    if (message.find("'" + name + "'") != std::string::npos) return &where;
+  return nullptr;
+}
+
+void check_labels(const Scene& s, const Model& m) {
+  const std::vector<std::string> inputs = m.input_labels();
+  for (const auto& use : s.labels) {
+    const std::vector<std::string>* names = nullptr;
+    bool found = false;
+    const char* what = "";
+    switch (use.kind) {
+      case LabelUse::Kind::coordinate:
+        found = m.coordinate_index.count(use.label) > 0;
+        names = &m.coordinate_labels;
+        what = "coordinate";
+        break;
+      case LabelUse::Kind::rate:
+        found = m.rate_index.count(use.label) > 0;
+        names = &m.rate_labels;
+        what = "quasi-velocity";
+        break;
+      case LabelUse::Kind::input:
+        found = std::find(inputs.begin(), inputs.end(), use.label) != inputs.end();
+        names = &inputs;
+        what = "input";
+        break;
+    }
+    if (found) continue;
+    std::string extra;
+    if (use.kind == LabelUse::Kind::coordinate && m.fixed_coordinates.count(use.label))
+      extra = " (its node is joined to the ground)";
+    throw SceneError(use.where, std::string("unknown ") + what + " '" + use.label + "'" + extra +
+                                    did_you_mean(use.label, *names));
+  }
+}
+
+}  // namespace
+
+Model build_scene_model(const Scene& scene, const BuildOptions& options) {
+  Model m;
+  try {
+    m = build_model(scene.system, options);
+  } catch (const SceneError&) {
+    throw;
+  } catch (const Error& e) {
+    const Location* where = element_location(scene, e.element(), e.what());
+    throw SceneError(where ? *where : Location{scene.file, 0, 0}, e.what());
+  }
+  check_labels(scene, m);
+  return m;
+}
+
+InverseOptions inverse_options(const Scene& scene) {
+  InverseOptions o;
+  o.t0 = scene.run.t0;
+  o.t1 = scene.run.t0 + scene.run.duration;
+  o.samples = scene.run.samples > 0 ? scene.run.samples : 501;
+  o.position_tolerance = scene.run.tolerance;
+  return o;
+}
+
+ForwardOptions forward_options(const Scene& scene, const Model& model) {
+  ForwardOptions o;
+  o.t0 = scene.run.t0;
+  o.t1 = scene.run.t0 + scene.run.duration;
+  o.samples = scene.run.samples > 0 ? scene.run.samples : 101;
+  o.integrator = scene.run.integrator;
+  o.formulation = scene.run.formulation;
+  o.rtol = scene.run.rtol;
+  o.atol = scene.run.atol;
+  o.step = scene.run.step;
+  o.efforts.resize(model.inputs.size());
+  for (const auto& [label, signal] : scene.efforts)
+    for (size_t k = 0; k < model.inputs.size(); ++k)
+      if (model.inputs[k].label == label) o.efforts[k] = signal;
+  return o;
+}
+
+State initial_state(const Scene& scene, const Model& model) {
+  try {
+    return consistent_state(model, scene.initial, scene.run.t0);
+  } catch (const SceneError&) {
+    throw;
+  } catch (const Error& e) {
+    throw SceneError(Location{scene.file, 0, 0}, std::string("initial state: ") + e.what());
+  }
+}
+
+}  // namespace mo2d
