@@ -77,6 +77,8 @@ class RkDriver {
         y_stage_(n_),
         err_(n_) {
     for (auto& k : k_) k.resize(n_);
+    k_start_.resize(n_);
+    k_next_.resize(n_);
     project_ = o.integrator != Integrator::baumgarte;
   }
 
@@ -88,35 +90,42 @@ class RkDriver {
     double g_prev = event(t, y);
     // adaptive: first step from the tolerance-free guess; the controller takes over from there
     double h = tab_.embedded ? std::min(1e-3, (o_.t1 - o_.t0) / 10) : o_.step;
-    for (int k = 1; k < o_.samples; ++k) {
-      const double t_out = o_.t0 + (o_.t1 - o_.t0) * k / (o_.samples - 1);
-      while (t < t_out) {
-        double hh;
-        if (tab_.embedded) {
-          hh = std::min(h, t_out - t);
-          if (t_out - t - hh < 1e-12 * std::max(1.0, std::abs(t_out))) hh = t_out - t;
-        } else {  // fixed step: equal steps that end on the output time
-          const int nsteps = std::max(1, static_cast<int>(std::ceil((t_out - t) / o_.step - 1e-9)));
-          hh = (t_out - t) / nsteps;
-        }
-        double used = hh;
-        advance(t, t_out, y, hh, h, y_new, used);
-        if (o_.stop_when) {
-          const double g = event(t + used, y_new);
-          if ((g_prev < 0) != (g < 0) && g_prev != 0) {
-            locate_event(t, y, used, g_prev, g, rec);
-            return;
-          }
-          g_prev = g;
-        }
-        t = (used == t_out - t) ? t_out : t + used;
-        y.swap(y_new);
-        if (++d_.stats.steps > o_.max_steps)
-          throw Error("forward dynamics of '" + m_.name + "': more than " +
-                          std::to_string(o_.max_steps) + " steps before t = " + fmt(t_out),
-                      m_.name, t);
+    int k = 1;  // next output time
+    auto output_time = [&](int i) { return o_.t0 + (o_.t1 - o_.t0) * i / (o_.samples - 1); };
+    while (k < o_.samples) {
+      const double t_out = output_time(k);
+      double hh;
+      if (tab_.embedded) {
+        hh = std::min(h, t_out - t);
+        if (t_out - t - hh < 1e-12 * std::max(1.0, std::abs(t_out))) hh = t_out - t;
+      } else {  // fixed step: equal steps that end on the output time
+        const int nsteps = std::max(1, static_cast<int>(std::ceil((t_out - t) / o_.step - 1e-9)));
+        hh = (t_out - t) / nsteps;
       }
-      record(rec, t_out, y);
+      double used = hh;
+      advance(t, y, hh, h, y_new, used);
+      if (o_.stop_when) {
+        const double g = event(t + used, y_new);
+        if ((g_prev < 0) != (g < 0) && g_prev != 0) {
+          locate_event(t, y, used, g_prev, g, rec);
+          return;
+        }
+        g_prev = g;
+      }
+      const double t_new = (used == t_out - t) ? t_out : t + used;
+      // a step that jumped over a singular instant may pass output times: interpolate them
+      while (k < o_.samples && output_time(k) < t_new)
+        record_interpolated(rec, t, y, t_new, y_new, output_time(k++));
+      if (k < o_.samples && output_time(k) == t_new) {
+        record(rec, t_new, y_new);
+        ++k;
+      }
+      t = t_new;
+      y.swap(y_new);
+      if (++d_.stats.steps > o_.max_steps)
+        throw Error("forward dynamics of '" + m_.name + "': more than " +
+                        std::to_string(o_.max_steps) + " steps before t = " + fmt(t_out),
+                    m_.name, t);
     }
     d_.stats.t_end = t;
   }
@@ -130,6 +139,8 @@ class RkDriver {
   bool project_ = true;
   double last_stepped_over_ = -INFINITY;
   std::array<VectorXd, 7> k_;
+  VectorXd k_start_, k_next_;  // rates at the start of the next step (at the end of the last one)
+  bool have_start_ = false;
   VectorXd q0_, q1_, y_stage_, err_;
 
   void split(const VectorXd& y) {
@@ -151,6 +162,10 @@ class RkDriver {
   bool step(double t, const VectorXd& y, double h, VectorXd& y_new, double& err) {
     bool ok = true;
     for (int i = 0; i < tab_.stages; ++i) {
+      if (i == 0 && have_start_) {  // the rates at the start: evaluated when the last step ended
+        k_[0] = k_start_;
+        continue;
+      }
       y_stage_ = y;
       for (int j = 0; j < i; ++j)
         if (tab_.a[i][j] != 0) y_stage_.noalias() += (h * tab_.a[i][j]) * k_[j];
@@ -176,12 +191,14 @@ class RkDriver {
       y_new.head(m_.n0) = q0_;
       y_new.segment(m_.n0, m_.n1) = q1_;
     }
-    return true;
+    // the next step starts here: its first rates must be accurate too, or the next step could
+    // not avoid the instant whatever its length
+    return derivative(t + h, y_new, k_next_);
   }
   // Take one accepted step from (t, y) with a first try of length hh; `used` returns the length
   // taken, h the controller's next step (adaptive).
-  void advance(double t, double t_limit, const VectorXd& y, double hh, double& h, VectorXd& y_new,
-               double& used) {
+  void advance(double t, const VectorXd& y, double hh, double& h, VectorXd& y_new, double& used) {
+    const double t_limit = o_.t1;  // a longer step may pass output times (they are interpolated)
     const double h_first = hh;
     std::size_t retry = 0;
     for (;;) {
@@ -198,6 +215,7 @@ class RkDriver {
         double e2 = 0;
         d_.accel_ok = true;
         step_ignoring_accuracy(t, y, hh, y_new, e2);
+        have_start_ = false;
         if (d_.stats.warnings.size() < 20)
           d_.stats.warnings.push_back("could not step over a singular configuration near t = " +
                                       fmt(t) + " s; regularized accelerations used");
@@ -211,12 +229,16 @@ class RkDriver {
       }
       if (!tab_.embedded) {
         used = hh;
+        k_start_.swap(k_next_);
+        have_start_ = true;
         return;
       }
       const double factor =
           err > 0 ? 0.9 * std::pow(err, -1.0 / (tab_.order)) : 5.0;  // elementary controller
       if (err <= 1) {
         used = hh;
+        k_start_.swap(k_next_);
+        have_start_ = true;
         // the next step grows from the step just taken, unless that one was clipped short
         h = std::max(h, hh) == hh ? hh * std::clamp(factor, 0.2, 5.0) : h;
         return;
@@ -247,6 +269,39 @@ class RkDriver {
       y_new.head(m_.n0) = q0_;
       y_new.segment(m_.n0, m_.n1) = q1_;
     }
+  }
+  // State at an output time t_s inside the accepted step (t, y) -> (t1, y1): Hermite interpolation
+  // (quintic for q0 from q0, its rates and accelerations; cubic for q1, the work and the dissipated
+  // energy from their values and rates), projected on the constraint manifolds, then recorded.
+  void record_interpolated(Recorder& rec, double t, const VectorXd& y, double t1,
+                           const VectorXd& y1, double t_s) {
+    VectorXd& f0 = k_[0];  // rates at both ends (k_ is free between steps)
+    VectorXd& f1 = k_[1];
+    derivative(t, y, f0);
+    const VectorXd a0 = d_.a;
+    derivative(t1, y1, f1);
+    const VectorXd a1 = d_.a;
+    const double h = t1 - t, s = (t_s - t) / h;
+    const double s2 = s * s, s3 = s2 * s, s4 = s3 * s, s5 = s4 * s;
+    // cubic Hermite basis
+    const double c00 = 2 * s3 - 3 * s2 + 1, c10 = s3 - 2 * s2 + s, c01 = -2 * s3 + 3 * s2,
+                 c11 = s3 - s2;
+    VectorXd ys = c00 * y + c01 * y1 + (h * c10) * f0 + (h * c11) * f1;
+    // quintic Hermite basis for the positions
+    const double q00 = 1 - 10 * s3 + 15 * s4 - 6 * s5, q10 = s - 6 * s3 + 8 * s4 - 3 * s5,
+                 q20 = 0.5 * (s2 - 3 * s3 + 3 * s4 - s5), q01 = 10 * s3 - 15 * s4 + 6 * s5,
+                 q11 = -4 * s3 + 7 * s4 - 3 * s5, q21 = 0.5 * (s3 - 2 * s4 + s5);
+    const int n0 = m_.n0;
+    ys.head(n0) = q00 * y.head(n0) + q01 * y1.head(n0) + (h * q10) * f0.head(n0) +
+                  (h * q11) * f1.head(n0) + (h * h * q20) * a0.head(n0) +
+                  (h * h * q21) * a1.head(n0);
+    if (project_) {
+      split(ys);
+      d_.project(t_s, q0_, q1_, 1e-13 * m_.scale, 1e-13 * m_.scale);
+      ys.head(m_.n0) = q0_;
+      ys.segment(m_.n0, m_.n1) = q1_;
+    }
+    record(rec, t_s, ys);
   }
   double event(double t, const VectorXd& y) {
     if (!o_.stop_when) return 1.0;

@@ -193,6 +193,7 @@ void read_run(const Reader& r, const YAML::Node& node, RunSettings& run) {
                                         {{"cvode_bdf", Integrator::cvode_bdf},
                                          {"cvode_adams", Integrator::cvode_adams},
                                          {"rk4", Integrator::rk4},
+                                         {"dopri5", Integrator::dopri5},
                                          {"baumgarte", Integrator::baumgarte}});
   if (node["formulation"].IsDefined())
     run.formulation =
