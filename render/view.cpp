@@ -140,7 +140,7 @@ FramePlan make_plan(const Model& model, const Motion& motion, const FrameOptions
   }
   p.traces.assign(p.trace_points.size(), {});
   for (Eigen::Index k = 0; k < N; ++k) {
-    const auto q0 = motion.q0.row(k).transpose();
+    const Eigen::VectorXd q0 = motion.q0.row(k).transpose();
     for (const Body& b : model.bodies) {
       for (const NodeRef& n : b.nodes) box.extend(node_position(n, q0));
       box.extend(com_position(b, q0));
