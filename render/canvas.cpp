@@ -12,6 +12,7 @@
 
 #include "mo2d/csv.hpp"
 #include "mo2d/error.hpp"
+#include "png.hpp"
 
 namespace mo2d::detail {
 
@@ -98,12 +99,11 @@ Image Canvas::image() const {
 std::string Canvas::finish() {
   check_status(cr_, "drawing");
   if (format_ == Format::png) {
-    std::string out;
     cairo_surface_flush(surface_);
-    const cairo_status_t s = cairo_surface_write_to_png_stream(surface_, append_bytes, &out);
-    if (s != CAIRO_STATUS_SUCCESS)
-      throw Error(std::string("render: PNG encoding failed: ") + cairo_status_to_string(s));
-    return out;
+    return encode_png_rgb(
+        reinterpret_cast<const std::uint32_t*>(cairo_image_surface_get_data(surface_)),
+        cairo_image_surface_get_width(surface_), cairo_image_surface_get_height(surface_),
+        cairo_image_surface_get_stride(surface_) / 4);
   }
   cairo_surface_finish(surface_);
   if (cairo_surface_status(surface_) != CAIRO_STATUS_SUCCESS)

@@ -1,10 +1,9 @@
 // Colours, the palette, and PNG encoding of an Image.
 #include "mo2d/render/image.hpp"
 
-#include <cairo.h>
-
 #include "canvas.hpp"
 #include "mo2d/error.hpp"
+#include "png.hpp"
 
 namespace mo2d {
 
@@ -25,17 +24,7 @@ std::string encode_png(const Image& image) {
   if (image.argb.size() != static_cast<size_t>(image.width) * image.height)
     throw Error("render: image has " + std::to_string(image.argb.size()) + " pixels, expected " +
                 std::to_string(image.width) + " x " + std::to_string(image.height));
-  detail::Canvas canvas(detail::Format::png, image.width, image.height, 72);
-  cairo_surface_t* s = cairo_get_target(canvas.cr());
-  cairo_surface_flush(s);
-  unsigned char* data = cairo_image_surface_get_data(s);
-  const int stride = cairo_image_surface_get_stride(s);
-  for (int y = 0; y < image.height; ++y) {
-    auto* row = reinterpret_cast<std::uint32_t*>(data + static_cast<size_t>(y) * stride);
-    for (int x = 0; x < image.width; ++x) row[x] = image.at(x, y);
-  }
-  cairo_surface_mark_dirty(s);
-  return canvas.finish();
+  return detail::encode_png_rgb(image.argb.data(), image.width, image.height, image.width);
 }
 
 void write_png(const Image& image, const std::string& path) {
