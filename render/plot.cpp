@@ -112,6 +112,7 @@ Measured measure(cairo_t* cr, const Plot& plot) {
         y0 = std::min(y0, s.y[i]), y1 = std::max(y1, s.y[i]);
       }
   }
+  if (!(x0 <= x1) && plot.x.range && plot.y.range) x0 = x1 = y0 = y1 = 1;  // empty axes
   if (!(x0 <= x1))
     throw Error(std::string("render: the plot has no point to draw (all empty, non-finite") +
                     (lx || ly ? " or not positive on a log axis)" : ")"),

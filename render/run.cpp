@@ -32,6 +32,15 @@ Plot time_plot(const Eigen::VectorXd& t) {
   return p;
 }
 
+// Exact zeros cannot be drawn on a log axis: if no residual is positive, say so and keep the axes.
+void mark_all_zero(Plot& p) {
+  for (const Series& s : p.series)
+    for (double v : s.y)
+      if (v > 0) return;
+  p.y.range = std::pair{1e-18, 1e-12};
+  p.title += " (all exactly zero)";
+}
+
 void check_job(const RenderJob& job) {
   if (job.format != "png" && job.format != "svg" && job.format != "pdf")
     throw Error("render: RenderJob::format '" + job.format + "' is not png, svg or pdf", "format");
@@ -99,6 +108,7 @@ Plot inverse_residuals_plot(const InverseResult& r) {
   p.y.label = "constraint residual |\u03C8|\u221E";
   p.y.log = true;
   p.title = "Constraint residuals";
+  mark_all_zero(p);
   return p;
 }
 
@@ -127,6 +137,7 @@ Plot forward_residuals_plot(const ForwardResult& r) {
   p.y.label = "constraint residual |\u03C8|\u221E";
   p.y.log = true;
   p.title = "Constraint residuals";
+  mark_all_zero(p);
   return p;
 }
 

@@ -308,6 +308,11 @@ TEST(Render, BadInputGivesAClearError) {
   p.series[0] = {"zeros", {0, 1}, {0, 0}, {}, false, false};
   p.y.log = true;
   EXPECT_THROW(render_plot(p), Error);  // nothing positive on a log axis
+  p.x.range = std::pair{0.0, 1.0};
+  p.y.range = std::pair{1e-18, 1e-12};
+  EXPECT_NO_THROW(render_plot(p));  // both ranges given: empty axes
+  p.x.range.reset();
+  p.y.range.reset();
   p.y.log = false;
   p.width = -3;
   EXPECT_THROW(render_plot(p), Error);
@@ -348,6 +353,30 @@ TEST(Render, InverseRunWritesFramesFilmstripAndPlots) {
   ASSERT_EQ(e.series.size(), 1u);
   EXPECT_EQ(e.series[0].label, "crank_pivot.torque");
   EXPECT_EQ(e.y.label, "torque (N\u00B7m)");
+  fs::remove_all(d);
+}
+
+TEST(Render, ForwardRunWritesFilmstripAndPlots) {
+  const mechanisms::Example ex = mechanisms::pendulum({.theta0 = 0.5});
+  const Model m = build_model(ex.system);
+  const State start = consistent_state(m, {.positions = {}, .velocities = {{"link.w", 0.0}}});
+  ForwardOptions o;
+  o.t1 = 1;
+  o.samples = 21;
+  const ForwardResult r = forward_dynamics(m, start, o);
+  const fs::path d = scratch_dir("forward");
+  RenderJob job;
+  job.dir = d.string();
+  job.name = "pendulum";
+  job.format = "svg";
+  job.filmstrip_options.tile.traces = {"link.P"};
+  const RenderOutputs out = render_forward_run(m, r, job);
+  EXPECT_TRUE(out.frames.empty());
+  EXPECT_EQ(fs::path(out.filmstrip).filename(), "pendulum_filmstrip.svg");
+  ASSERT_EQ(out.plots.size(), 2u);
+  EXPECT_EQ(fs::path(out.plots[0]).filename(), "pendulum_energies.svg");
+  EXPECT_EQ(fs::path(out.plots[1]).filename(), "pendulum_residuals.svg");
+  for (const std::string& f : out.plots) EXPECT_EQ(read_file(f).substr(0, 5), "<?xml");
   fs::remove_all(d);
 }
 

@@ -45,7 +45,8 @@ struct PlotLayout {
   double x0 = 0, x1 = 1, y0 = 0, y1 = 1;            // axis ranges
   bool log_x = false, log_y = false;
 };
-// Throws Error for a plot without plottable points, mismatched x/y sizes, a bad size or range.
+// Throws Error for a plot without plottable points (unless both axis ranges are given: then the
+// axes are drawn empty), mismatched x/y sizes, a bad size or range.
 PlotLayout plot_layout(const Plot& plot);
 Eigen::Vector2d to_pixel(const PlotLayout& layout, double x, double y);
 
