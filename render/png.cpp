@@ -31,33 +31,42 @@ void chunk(std::string& out, const char* type, const unsigned char* data, size_t
 }  // namespace
 
 std::string encode_png_rgb(const std::uint32_t* pixels, int width, int height, int stride) {
-  const size_t row_bytes = 1 + 3 * static_cast<size_t>(width);
-  std::vector<unsigned char> raw(row_bytes * height);
-  for (int y = 0; y < height; ++y) {
-    unsigned char* r = raw.data() + row_bytes * y;
-    const std::uint32_t* p = pixels + static_cast<size_t>(y) * stride;
-    r[0] = 1;  // Sub
-    unsigned char prev[3] = {0, 0, 0};
-    for (int x = 0; x < width; ++x) {
-      const unsigned char c[3] = {static_cast<unsigned char>(p[x] >> 16),
-                                  static_cast<unsigned char>(p[x] >> 8),
-                                  static_cast<unsigned char>(p[x])};
-      for (int k = 0; k < 3; ++k) {
-        r[1 + 3 * x + k] = static_cast<unsigned char>(c[k] - prev[k]);
-        prev[k] = c[k];
-      }
-    }
-  }
+  // Rows are filtered one at a time and streamed through zlib into 64 KiB pieces: no buffer of
+  // the size of the image is allocated (large buffers cost page faults at every frame).
   z_stream z{};
   if (deflateInit2(&z, 1, Z_DEFLATED, 15, 8, Z_DEFAULT_STRATEGY) != Z_OK)
     throw Error("render: zlib initialisation failed");
-  std::vector<unsigned char> packed(deflateBound(&z, static_cast<uLong>(raw.size())));
-  z.next_in = raw.data();
-  z.avail_in = static_cast<uInt>(raw.size());
-  z.next_out = packed.data();
-  z.avail_out = static_cast<uInt>(packed.size());
-  const int rc = deflate(&z, Z_FINISH);
-  const size_t packed_size = z.total_out;
+  std::string packed;
+  std::vector<unsigned char> row(1 + 3 * static_cast<size_t>(width)), piece(1 << 16);
+  auto pump = [&](int flush) {
+    int rc = Z_OK;
+    do {
+      z.next_out = piece.data();
+      z.avail_out = static_cast<uInt>(piece.size());
+      rc = deflate(&z, flush);
+      packed.append(reinterpret_cast<const char*>(piece.data()), piece.size() - z.avail_out);
+    } while (z.avail_out == 0 && rc == Z_OK);
+    return rc;
+  };
+  for (int y = 0; y < height; ++y) {
+    const std::uint32_t* p = pixels + static_cast<size_t>(y) * stride;
+    unsigned char* r = row.data();
+    r[0] = 1;  // Sub
+    std::uint32_t prev = 0;
+    for (int x = 0; x < width; ++x) {
+      const std::uint32_t c = p[x];
+      r[1 + 3 * x] = static_cast<unsigned char>((c >> 16) - (prev >> 16));
+      r[2 + 3 * x] = static_cast<unsigned char>((c >> 8) - (prev >> 8));
+      r[3 + 3 * x] = static_cast<unsigned char>(c - prev);
+      prev = c;
+    }
+    z.next_in = row.data();
+    z.avail_in = static_cast<uInt>(row.size());
+    if (pump(Z_NO_FLUSH) == Z_STREAM_ERROR) break;
+  }
+  z.next_in = nullptr;
+  z.avail_in = 0;
+  const int rc = pump(Z_FINISH);
   deflateEnd(&z);
   if (rc != Z_STREAM_END) throw Error("render: zlib compression failed");
 
@@ -74,7 +83,7 @@ std::string encode_png_rgb(const std::uint32_t* pixels, int width, int height, i
   ihdr[11] = 0;  // adaptive filtering (per-row filter byte)
   ihdr[12] = 0;  // no interlace
   chunk(out, "IHDR", ihdr, sizeof ihdr);
-  chunk(out, "IDAT", packed.data(), packed_size);
+  chunk(out, "IDAT", reinterpret_cast<const unsigned char*>(packed.data()), packed.size());
   chunk(out, "IEND", nullptr, 0);
   return out;
 }
