@@ -41,6 +41,7 @@ int main(int argc, char** argv) {
     torque.series[0].label = "crank torque (crank_pivot)";
     torque.title = "Whitworth mechanism: crank torque at \u03C9 = \u03C0/2 rad/s";
     torque.x.range = std::pair{0.0, 8.0};
+    torque.y.range = std::pair{-1.25, 1.25};
     torque.legend = false;
     torque.width = 720;
     torque.height = 330;
