@@ -99,15 +99,16 @@ std::vector<std::string> write_frames(const Model& model, const Motion& motion,
                                       const std::string& name, int every = 1);
 
 // A contact sheet: `frames` samples equally spaced over the run (first and last included), or the
-// listed `samples`, drawn side by side in `columns` columns (0: one row), every tile with the
-// same view.
+// listed `samples`, drawn side by side in `columns` columns (0: one row; default 3), every tile
+// with the same view.
 struct FilmstripOptions {
   int frames = 6;
   std::vector<int> samples{};  // these samples instead (then `frames` is ignored)
-  int columns = 0;
+  int columns = 3;
   double gap = 4;           // points between tiles
   bool tile_border = true;  // a thin frame around every tile
-  FrameOptions tile{};      // size of one tile and what it shows (scale bar and axes: first tile)
+  // Size of one tile (default 360 x 270 px) and what it shows (scale bar and axes: first tile).
+  FrameOptions tile{.width = 360, .height = 270};
 };
 Image render_filmstrip(const Model& model, const Motion& motion, const FilmstripOptions& options);
 // .png, .svg or .pdf by extension (atomic write).
