@@ -1,9 +1,9 @@
 // Regenerates the README figures of the Whitworth quick-return mechanism:
 //   docs/img/whitworth_filmstrip.png  one crank revolution (4 s), a frame every 0.5 s
 //   docs/img/whitworth_torque.png     the crank torque over two revolutions
-// Usage (from the repository root):
-//   cmake --build build --target mo2d_render_readme_figures -j2
-//   build/render/mo2d_render_readme_figures docs/img
+// One command (builds this program and runs it on docs/img):
+//   cmake --build build --target mo2d_readme_figures -j2
+// or by hand: build/render/mo2d_render_readme_figures docs/img
 #include <cstdio>
 #include <exception>
 #include <string>
