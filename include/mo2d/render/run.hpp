@@ -1,0 +1,61 @@
+#pragma once
+// One call per kind of run for the command-line tool: frames, a filmstrip, plots and (optionally)
+// a video of an inverse- or forward-dynamics result, written under one folder.
+#include <string>
+#include <vector>
+
+#include "mo2d/forward.hpp"
+#include "mo2d/inverse.hpp"
+#include "mo2d/model.hpp"
+#include "mo2d/render/frame.hpp"
+#include "mo2d/render/plot.hpp"
+
+namespace mo2d {
+
+struct RenderJob {
+  std::string dir = "out";     // created if missing
+  std::string name = "run";    // file name prefix
+  std::string format = "png";  // filmstrip and plots: png, svg or pdf (frames are always PNG)
+  bool frames = false;         // DIR/NAME_0001.png ... every `every` samples
+  int every = 10;
+  bool filmstrip = true;  // DIR/NAME_filmstrip.FORMAT
+  FilmstripOptions filmstrip_options{};
+  bool plots = true;   // inverse: efforts, residuals; forward: energies, residuals
+  bool video = false;  // DIR/NAME.mp4 from the frames, only if ffmpeg is on PATH
+  double fps = 25;
+  FrameOptions frame{};  // frames (and the video)
+  int plot_width = 800, plot_height = 450;
+  double plot_dpi = 96;
+};
+
+struct RenderOutputs {
+  std::vector<std::string> frames{};
+  std::string filmstrip{};
+  std::vector<std::string> plots{};
+  std::string video{};               // empty if not asked for or ffmpeg is missing
+  std::vector<std::string> notes{};  // e.g. "ffmpeg not found: no video"
+};
+
+// Inverse dynamics: frames (with the effort symbols), filmstrip, DIR/NAME_efforts.FORMAT (every
+// input against time, torques and forces in their units) and DIR/NAME_residuals.FORMAT (position,
+// velocity and acceleration residuals, log scale). Returns the paths written.
+RenderOutputs render_inverse_run(const Model& model, const InverseResult& result,
+                                 const RenderJob& job);
+// Forward dynamics: frames, filmstrip (traces, if any, show the trajectory),
+// DIR/NAME_energies.FORMAT (kinetic, potential, input work, dissipated, balance) and
+// DIR/NAME_residuals.FORMAT (position and velocity residuals, log scale).
+RenderOutputs render_forward_run(const Model& model, const ForwardResult& result,
+                                 const RenderJob& job);
+
+// The plots on their own (used by the functions above).
+Plot efforts_plot(const InverseResult& result);
+Plot inverse_residuals_plot(const InverseResult& result);
+Plot energies_plot(const ForwardResult& result);
+Plot forward_residuals_plot(const ForwardResult& result);
+
+// An MP4 (H.264) from DIR/NAME_%04d.png with ffmpeg. Returns false (and writes nothing) if
+// ffmpeg is not on PATH; throws Error if ffmpeg fails.
+bool encode_video(const std::string& dir, const std::string& name, double fps,
+                  const std::string& path);
+
+}  // namespace mo2d

@@ -1,0 +1,39 @@
+#pragma once
+// Everything a run's frames share, computed once: validated input, the joints, the fixed view,
+// the peak of every effort, the range of every slider, the traced paths. Internal to mo2d_render.
+#include <cairo.h>
+
+#include <utility>
+#include <vector>
+
+#include "mo2d/render/frame.hpp"
+#include "parts.hpp"
+
+namespace mo2d::detail {
+
+struct FramePlan {
+  const Model* model = nullptr;
+  const Motion* motion = nullptr;
+  FrameOptions options{};
+  double P = 1;  // pixels per point
+  Parts parts{};
+  View view{};
+  std::vector<double> peak{};                      // per input: max |effort| over the run
+  std::vector<std::pair<double, double>> range{};  // per joint: slider coordinate min, max
+  std::vector<TracePoint> trace_points{};
+  std::vector<std::vector<Vec2>> traces{};  // per trace point, per sample (world)
+  int time_decimals = 2;
+};
+
+// Validates (Error: empty run, wrong number of columns, non-finite coordinate, bad size).
+FramePlan make_plan(const Model& model, const Motion& motion, const FrameOptions& options);
+
+struct Decorations {
+  bool time = true, scale_bar = true, axes = true;
+};
+// Draws sample `k` in the rectangle (0, 0, view.width, view.height) of cr.
+void draw_frame(cairo_t* cr, const FramePlan& plan, int k, const Decorations& decorations);
+
+void check_sample(const Motion& motion, int sample);
+
+}  // namespace mo2d::detail
