@@ -18,13 +18,7 @@ int forward(const SceneOptions& o) {
   ForwardOptions run = forward_options(scene, model);
   const State initial = initial_state(scene, model);
   Progress progress(run.t0, run.t1);
-  // The progress bar rides on the stop condition, which never changes sign; it is installed only
-  // when the bar can be drawn, so runs into a pipe or a file are exactly the scene's.
-  if (isatty_stderr())
-    run.stop_when = [&progress](double t, const VectorXd&, const VectorXd&) {
-      progress.update(t);
-      return 1.0;
-    };
+  run.progress = [&progress](double t) { progress.update(t); };
   const ForwardResult r = forward_dynamics(model, initial, run);
   progress.finish();
   std::printf("mo2d forward dynamics: %s\n", model.name.c_str());

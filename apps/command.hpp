@@ -18,5 +18,7 @@ Command add_demo_command(CLI::App& app);
 Command add_info_command(CLI::App& app);
 Command add_inverse_command(CLI::App& app);
 Command add_forward_command(CLI::App& app);
+Command add_render_command(CLI::App& app);
+Command add_crosscheck_command(CLI::App& app);
 
 }  // namespace mo2d::cli

@@ -20,6 +20,8 @@ int main(int argc, char** argv) {
       add_info_command(app),
       add_inverse_command(app),
       add_forward_command(app),
+      add_render_command(app),
+      add_crosscheck_command(app),
   };
   try {
     app.parse(argc, argv);

@@ -356,6 +356,7 @@ double ForwardData::pivot_indicator(double t, const VectorXd& q0) {
 
 void Recorder::record(double t, const VectorXd& q0, const VectorXd& q1, double work,
                       double dissipated) {
+  if (d.o.progress) d.o.progress(t);
   r.time[k] = t;
   r.q0.row(k) = q0.transpose();
   r.q1.row(k) = q1.transpose();

@@ -73,6 +73,8 @@ struct ForwardOptions {
   // is below this: 1e-4 is sigma ratio 1e-2, about 2 ms from a singular instant of the double
   // four-bar.
   double singular_warning = 1e-4;
+  // Called at every output time with that time (e.g. a progress bar); not part of the dynamics.
+  std::function<void(double t)> progress{};
 };
 
 struct ForwardStats {
