@@ -1,5 +1,6 @@
 // mo2d demo [MECHANISM] [--out DIR]: inverse dynamics of a built-in example mechanism (default:
-// whitworth), a short table and DIR/MECHANISM_inverse.csv. scripts/quickstart.sh runs it.
+// whitworth), a short table, DIR/MECHANISM_inverse.csv, a filmstrip of the motion and plots of the
+// efforts and residuals. scripts/quickstart.sh runs it.
 #include <cstdio>
 #include <filesystem>
 #include <map>
@@ -7,6 +8,7 @@
 #include "command.hpp"
 #include "mo2d/mechanisms.hpp"
 #include "mo2d/mo2d.hpp"
+#include "mo2d/render.hpp"
 #include "table.hpp"
 
 namespace mo2d::cli {
@@ -39,6 +41,12 @@ int demo(const DemoOptions& o) {
   const std::string path = o.out + "/" + o.mechanism + "_inverse.csv";
   write_inverse_csv(r, path);
   std::printf("  wrote %s\n", path.c_str());
+  RenderJob job;
+  job.dir = o.out;
+  job.name = o.mechanism;
+  const RenderOutputs pictures = render_inverse_run(model, r, job);
+  std::printf("  wrote %s\n", pictures.filmstrip.c_str());
+  for (const auto& p : pictures.plots) std::printf("  wrote %s\n", p.c_str());
   return 0;
 }
 
@@ -47,7 +55,9 @@ int demo(const DemoOptions& o) {
 Command add_demo_command(CLI::App& app) {
   auto o = std::make_shared<DemoOptions>();
   CLI::App* sub = app.add_subcommand(
-      "demo", "Inverse dynamics of a built-in mechanism; writes DIR/MECHANISM_inverse.csv");
+      "demo",
+      "Inverse dynamics of a built-in mechanism; writes DIR/MECHANISM_inverse.csv, a filmstrip "
+      "and plots");
   sub->add_option("MECHANISM", o->mechanism,
                   "whitworth (default), rrr3, slider_crank, fourbar, pendulum");
   sub->add_option("--out", o->out, "output folder")->capture_default_str();

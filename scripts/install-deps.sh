@@ -8,9 +8,12 @@ packages=(
   libeigen3-dev              # Eigen 3.4: dense linear algebra of the core library
   libgtest-dev               # GoogleTest: tests/
   libbenchmark-dev           # Google Benchmark: bench/
-  libsundials-dev            # SUNDIALS 6.4: upcoming forward dynamics (IDA/CVODE)
-  libbox2d-dev               # Box2D 2.4.1: upcoming cross-check simulations
-  libcairo2-dev              # Cairo 1.16: upcoming rendering
+  libsundials-dev            # SUNDIALS 6.4: forward dynamics (CVODE)
+  libbox2d-dev               # Box2D 2.4.1: the cross-check (mo2d_box2d)
+  libcairo2-dev              # Cairo 1.16: rendering (mo2d_render)
+  zlib1g-dev                 # zlib: mo2d_render's PNG encoder (faster than Cairo's own writer)
+  pkg-config                 # finds Cairo for CMake (pkg_check_modules)
+  fonts-dejavu-core          # DejaVu Sans: the text of frames and plots
   libyaml-cpp-dev            # yaml-cpp 0.7: scene files (mo2d_scene, line/column of every node)
   libcli11-dev               # CLI11 2.1 (header-only): the mo2d command line
   nlohmann-json3-dev         # nlohmann-json 3.11 (header-only): JSON run summaries of mo2d

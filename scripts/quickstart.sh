@@ -1,5 +1,6 @@
 #!/usr/bin/env bash
-# First run of mo2d: install the dependencies, build Release in build/, run the demo.
+# First run of mo2d: install the dependencies, build Release in build/, run the demo (inverse
+# dynamics of the Whitworth mechanism: table, CSV, filmstrip, torque plot in out/).
 #   ./scripts/quickstart.sh
 set -euo pipefail
 cd "$(dirname "${BASH_SOURCE[0]}")/.."
@@ -21,5 +22,8 @@ echo "== demo: build/mo2d demo"
 echo
 echo "Done in $((SECONDS - start)) s."
 echo "  inverse dynamics of the Whitworth mechanism: $(pwd)/out/whitworth_inverse.csv"
+echo "  filmstrip of the motion:                     $(pwd)/out/whitworth_filmstrip.png"
+echo "  crank torque plot:                           $(pwd)/out/whitworth_efforts.png"
 echo "  command-line tool:                           $(pwd)/build/mo2d --help"
+echo "  scene files:                                 $(pwd)/mechanisms/*.yaml (build/mo2d info|inverse|forward|render|crosscheck SCENE)"
 echo "  next: ./scripts/test.sh (Release + ASan/UBSan test suites)"
