@@ -100,16 +100,21 @@ Plot efforts_plot(const InverseResult& r) {
   return p;
 }
 
-Plot inverse_residuals_plot(const InverseResult& r) {
-  Plot p = time_plot(r.time);
+// Constraint residuals (columns of `residuals`: position, velocity[, acceleration]) on a log axis.
+static Plot residuals_plot(const Eigen::VectorXd& time, const Eigen::MatrixXd& residuals) {
+  Plot p = time_plot(time);
   const char* names[] = {"position (m)", "velocity", "acceleration"};
-  for (int c = 0; c < 3 && c < r.residuals.cols(); ++c)
-    p.series.push_back({names[c], values(r.time), column(r.residuals, c), {}, c > 0, false});
+  for (int c = 0; c < 3 && c < residuals.cols(); ++c)
+    p.series.push_back({names[c], values(time), column(residuals, c), {}, c > 0, false});
   p.y.label = "constraint residual |\u03C8|\u221E";
   p.y.log = true;
   p.title = "Constraint residuals";
   mark_all_zero(p);
   return p;
+}
+
+Plot inverse_residuals_plot(const InverseResult& r) {
+  return residuals_plot(r.time, r.residuals);
 }
 
 Plot energies_plot(const ForwardResult& r) {
@@ -130,15 +135,7 @@ Plot energies_plot(const ForwardResult& r) {
 }
 
 Plot forward_residuals_plot(const ForwardResult& r) {
-  Plot p = time_plot(r.time);
-  const char* names[] = {"position (m)", "velocity"};
-  for (int c = 0; c < 2 && c < r.residuals.cols(); ++c)
-    p.series.push_back({names[c], values(r.time), column(r.residuals, c), {}, c > 0, false});
-  p.y.label = "constraint residual |\u03C8|\u221E";
-  p.y.log = true;
-  p.title = "Constraint residuals";
-  mark_all_zero(p);
-  return p;
+  return residuals_plot(r.time, r.residuals);
 }
 
 RenderOutputs render_inverse_run(const Model& model, const InverseResult& result,

@@ -5,6 +5,7 @@
 //     merge rotation rates, according to BuildOptions::reduction;
 //  4. number the variables and constraint rows, give every one a label;
 //  5. assemble the initial configuration and check that no constraint is redundant.
+#include <Eigen/Geometry>
 #include <algorithm>
 #include <cmath>
 #include <functional>
@@ -13,12 +14,11 @@
 #include <set>
 #include <sstream>
 
-#include <Eigen/Geometry>
-
 #include "constraints.hpp"
 #include "mo2d/error.hpp"
 #include "mo2d/kinematics.hpp"
 #include "mo2d/model.hpp"
+#include "mo2d/suggest.hpp"
 
 namespace mo2d {
 namespace {
@@ -116,12 +116,8 @@ void flatten(const System& s, const std::string& prefix, const Frame& frame, int
     const double c = std::cos(frame.angle), sn = std::sin(frame.angle);
     if (f.fx || f.fy) {  // rotate the force vector into the world frame
       Signal fx = f.fx, fy = f.fy;
-      w.fx = [fx, fy, c, sn](double t) {
-        return c * (fx ? fx(t) : 0.0) - sn * (fy ? fy(t) : 0.0);
-      };
-      w.fy = [fx, fy, c, sn](double t) {
-        return sn * (fx ? fx(t) : 0.0) + c * (fy ? fy(t) : 0.0);
-      };
+      w.fx = [fx, fy, c, sn](double t) { return c * (fx ? fx(t) : 0.0) - sn * (fy ? fy(t) : 0.0); };
+      w.fy = [fx, fy, c, sn](double t) { return sn * (fx ? fx(t) : 0.0) + c * (fy ? fy(t) : 0.0); };
     }
     out.forces.push_back({std::move(w), tree_index, prefix});
   }
@@ -149,36 +145,15 @@ void flatten(const System& s, const std::string& prefix, const Frame& frame, int
   }
 }
 
-size_t edit_distance(const std::string& a, const std::string& b) {
-  std::vector<size_t> prev(b.size() + 1), cur(b.size() + 1);
-  std::iota(prev.begin(), prev.end(), 0);
-  for (size_t i = 1; i <= a.size(); ++i) {
-    cur[0] = i;
-    for (size_t j = 1; j <= b.size(); ++j)
-      cur[j] = std::min({prev[j] + 1, cur[j - 1] + 1, prev[j - 1] + (a[i - 1] != b[j - 1])});
-    std::swap(prev, cur);
-  }
-  return prev[b.size()];
-}
-
-std::string suggestion(const std::string& name, const std::vector<std::string>& candidates) {
-  std::string best;
-  size_t best_d = std::string::npos;
-  for (const auto& c : candidates) {
-    const size_t d = edit_distance(name, c);
-    if (d < best_d) best_d = d, best = c;
-  }
-  if (best.empty() || best_d > std::max<size_t>(3, name.size() / 3)) return "";
-  return " (did you mean '" + best + "'?)";
-}
-
 struct UnionFind {
   std::vector<int> parent;
   explicit UnionFind(int n) : parent(n) { std::iota(parent.begin(), parent.end(), 0); }
   int find(int x) { return parent[x] == x ? x : parent[x] = find(parent[x]); }
 };
 
-bool is_integer(double w) { return std::abs(w - std::round(w)) < 1e-12; }
+bool is_integer(double w) {
+  return std::abs(w - std::round(w)) < 1e-12;
+}
 
 }  // namespace
 
@@ -202,7 +177,7 @@ int Model::coordinate(const std::string& label) const {
     std::vector<std::string> names;
     for (const auto& [k, v] : coordinate_index) names.push_back(k);
     std::sort(names.begin(), names.end());
-    throw Error("unknown coordinate '" + label + "'" + suggestion(label, names), label);
+    throw Error("unknown coordinate '" + label + "'" + did_you_mean(label, names), label);
   }
   return it->second;
 }
@@ -213,7 +188,7 @@ int Model::rate(const std::string& label) const {
     std::vector<std::string> names;
     for (const auto& [k, v] : rate_index) names.push_back(k);
     std::sort(names.begin(), names.end());
-    throw Error("unknown quasi-velocity '" + label + "'" + suggestion(label, names), label);
+    throw Error("unknown quasi-velocity '" + label + "'" + did_you_mean(label, names), label);
   }
   return it->second;
 }
@@ -289,7 +264,7 @@ Model build_model(const System& system, const BuildOptions& options) {
       std::vector<std::string> cands;
       for (const auto& [k, v] : element_of)
         if (k.compare(0, prefix.size(), prefix) == 0) cands.push_back(k.substr(prefix.size()));
-      throw Error(what + ": node '" + prefix + ref + "' not found" + suggestion(ref, cands),
+      throw Error(what + ": node '" + prefix + ref + "' not found" + did_you_mean(ref, cands),
                   what.substr(what.find('\'') + 1, what.rfind('\'') - what.find('\'') - 1));
     }
     return it->second;
@@ -323,8 +298,10 @@ Model build_model(const System& system, const BuildOptions& options) {
       const Vec2 dd = b.geometry[1] - b.geometry[0];
       b.l01 = dd.norm();
       if (b.l01 < 1e-9 * m.scale)
-        throw Error("body '" + d.name + "': its first two nodes coincide (a body needs two distinct "
-                    "reference nodes)", d.name);
+        throw Error("body '" + d.name +
+                        "': its first two nodes coincide (a body needs two distinct "
+                        "reference nodes)",
+                    d.name);
       b.frame.assign(n, Vec2(0, 0));
       for (int k = 2; k < n; ++k) {
         const Vec2 r = b.geometry[k] - b.geometry[0];
@@ -337,7 +314,7 @@ Model build_model(const System& system, const BuildOptions& options) {
       std::vector<std::string> names;
       for (const auto& nd : d.nodes) names.push_back(nd.name);
       throw Error("body '" + d.name + "': centre of mass refers to unknown node '" + node + "'" +
-                      suggestion(node, names),
+                      did_you_mean(node, names),
                   d.name);
     };
     const CenterOfMass com = d.com.value_or(CenterOfMass::at_node(d.nodes[0].name));
@@ -385,18 +362,22 @@ Model build_model(const System& system, const BuildOptions& options) {
       case Reduction::none:
         return false;
       case Reduction::subsystems:
-        return (body1 < 0 || body_owner(body1) == owner) && (body2 < 0 || body_owner(body2) == owner);
+        return (body1 < 0 || body_owner(body1) == owner) &&
+               (body2 < 0 || body_owner(body2) == owner);
     }
     return false;
   };
 
-  // ---- one namespace for joints, coordinates and constraints ---------------------------------------
+  // ---- one namespace for joints, coordinates and constraints
+  // ---------------------------------------
   {
     std::set<std::string> names;
     auto claim = [&](const std::string& full, const char* what) {
       if (!names.insert(full).second)
-        throw Error(std::string(what) + " '" + full + "' is defined twice (joints, coordinates "
-                    "and constraints share one set of names)", full);
+        throw Error(std::string(what) + " '" + full +
+                        "' is defined twice (joints, coordinates "
+                        "and constraints share one set of names)",
+                    full);
     };
     for (const auto& j : flat.revolutes) claim(j.prefix + j.def.name, "revolute joint");
     for (const auto& j : flat.prismatics) claim(j.prefix + j.def.name, "prismatic joint");
@@ -422,11 +403,15 @@ Model build_model(const System& system, const BuildOptions& options) {
         throw Error(what + " connects two ground nodes ('" + element_label[ra] + "' and '" +
                         element_label[rb] + "'): conflicting constraints",
                     j.prefix + j.def.name);
-      if (element_body[rb] < 0) topo.parent[ra] = rb; else topo.parent[rb] = ra;
+      if (element_body[rb] < 0)
+        topo.parent[ra] = rb;
+      else
+        topo.parent[rb] = ra;
     }
   }
 
-  // ---- revolute joints: node merges --------------------------------------------------------------
+  // ---- revolute joints: node merges
+  // --------------------------------------------------------------
   UnionFind nodes_uf(E);
   std::vector<std::array<int, 2>> revolute_elements;
   std::vector<bool> revolute_merged;
@@ -811,8 +796,8 @@ Model build_model(const System& system, const BuildOptions& options) {
   }
   build_edges(
       NB + 1, rot_pairs, rot_reactions, [&](int e) { return e - 1; },
-      [&](int e) { return e == 0 ? -1 : m.bodies[e - 1].slots() - 1; }, [&](int e) { return e == 0; },
-      true);
+      [&](int e) { return e == 0 ? -1 : m.bodies[e - 1].slots() - 1; },
+      [&](int e) { return e == 0; }, true);
 
   for (size_t k = 0; k < flat.slots.size(); ++k) {
     const auto& j = flat.slots[k];
@@ -833,7 +818,8 @@ Model build_model(const System& system, const BuildOptions& options) {
     m.reactions.push_back({name + ".Fx", m.constraints[ci].row1, -1});
     m.reactions.push_back({name + ".Fy", m.constraints[ci].row1 + 1, -1});
     m.tree[j.owner].vars.push_back(slot_q[k]);
-    if (j.def.actuated_slide) m.inputs.push_back({name + ".force", name, {{VarRef{slot_q[k], -1, -1}, 1.0}}});
+    if (j.def.actuated_slide)
+      m.inputs.push_back({name + ".force", name, {{VarRef{slot_q[k], -1, -1}, 1.0}}});
     if (j.def.actuated_rotation) {
       Input in;
       in.label = name + ".torque";
@@ -881,7 +867,7 @@ Model build_model(const System& system, const BuildOptions& options) {
     std::vector<std::string> names;
     for (const auto& [k, v] : m.coordinate_index) names.push_back(k);
     throw Error(what + ": unknown coordinate '" + prefix + label + "'" +
-                    suggestion(prefix + label, names),
+                    did_you_mean(prefix + label, names),
                 prefix + label);
   };
   auto find_rate = [&](const std::string& prefix, const std::string& label,
@@ -891,7 +877,7 @@ Model build_model(const System& system, const BuildOptions& options) {
     std::vector<std::string> names;
     for (const auto& [k, v] : m.rate_index) names.push_back(k);
     throw Error(what + ": unknown quasi-velocity '" + prefix + label + "'" +
-                    suggestion(prefix + label, names),
+                    did_you_mean(prefix + label, names),
                 prefix + label);
   };
 
@@ -949,7 +935,8 @@ Model build_model(const System& system, const BuildOptions& options) {
     c.name = name;
     c.owner = pc.owner;
     c.psi = pc.def.psi;
-    for (const auto& a : pc.def.args) c.args.push_back(m.rate_refs[find_coordinate(pc.prefix, a, what)]);
+    for (const auto& a : pc.def.args)
+      c.args.push_back(m.rate_refs[find_coordinate(pc.prefix, a, what)]);
     const int ci = add_constraint(std::move(c), 1, 1, {""}, {".rate"});
     m.reactions.push_back({name + ".lambda", m.constraints[ci].row1, 1});
   }
@@ -967,19 +954,22 @@ Model build_model(const System& system, const BuildOptions& options) {
     c.g = vc.def.g;
     for (const auto& a : vc.def.coords)
       c.args.push_back(m.rate_refs[find_coordinate(vc.prefix, a, what)]);
-    for (const auto& a : vc.def.rates) c.rates.push_back(m.rate_refs[find_rate(vc.prefix, a, what)]);
+    for (const auto& a : vc.def.rates)
+      c.rates.push_back(m.rate_refs[find_rate(vc.prefix, a, what)]);
     const int ci = add_constraint(std::move(c), 0, 1, {}, {""});
     m.reactions.push_back({name + ".lambda", m.constraints[ci].row1, 1});
   }
 
   // ---- loads -----------------------------------------------------------------------------------
-  auto find_body = [&](const std::string& prefix, const std::string& name, const std::string& what) {
+  auto find_body = [&](const std::string& prefix, const std::string& name,
+                       const std::string& what) {
     for (int bi = 0; bi < NB; ++bi)
       if (m.bodies[bi].name == prefix + name) return bi;
     std::vector<std::string> names;
     for (const auto& b : m.bodies) names.push_back(b.name);
-    throw Error(what + ": unknown body '" + prefix + name + "'" + suggestion(prefix + name, names),
-                prefix + name);
+    throw Error(
+        what + ": unknown body '" + prefix + name + "'" + did_you_mean(prefix + name, names),
+        prefix + name);
   };
   for (const auto& f : flat.forces) {
     const std::string what = "force '" + f.prefix + f.def.name + "'";
@@ -1011,7 +1001,8 @@ Model build_model(const System& system, const BuildOptions& options) {
     m.torques.push_back(std::move(l));
   }
 
-  // ---- springs -----------------------------------------------------------------------------------
+  // ---- springs
+  // -----------------------------------------------------------------------------------
   auto body_point = [&](const std::string& prefix, const std::string& body, const Vec2& p,
                         const std::string& what) {
     BodyPoint bp;
@@ -1028,13 +1019,16 @@ Model build_model(const System& system, const BuildOptions& options) {
       bp.gamma = r.dot(dd) / dd.squaredNorm();
       bp.rho = r.dot(perp(dd)) / dd.squaredNorm();
     } else if ((p - b.geometry[0]).norm() > 1e-12 * m.scale) {
-      throw Error(what + ": body '" + b.name + "' has one node: the point must be the node", b.name);
+      throw Error(what + ": body '" + b.name + "' has one node: the point must be the node",
+                  b.name);
     }
     return bp;
   };
-  auto nonnegative = [](double v, const std::string& what, const char* field, const std::string& el) {
+  auto nonnegative = [](double v, const std::string& what, const char* field,
+                        const std::string& el) {
     if (!std::isfinite(v) || v < 0)
-      throw Error(what + ": " + field + " must be finite and >= 0 (got " + std::to_string(v) + ")", el);
+      throw Error(what + ": " + field + " must be finite and >= 0 (got " + std::to_string(v) + ")",
+                  el);
   };
   for (const auto& sp : flat.springs) {
     const std::string name = sp.prefix + sp.def.name;
@@ -1067,7 +1061,7 @@ Model build_model(const System& system, const BuildOptions& options) {
       std::vector<std::string> names;
       for (const auto& j : flat.revolutes) names.push_back(j.prefix + j.def.name);
       throw Error(what + ": unknown revolute joint '" + ts.prefix + ts.def.joint + "'" +
-                      suggestion(ts.prefix + ts.def.joint, names),
+                      did_you_mean(ts.prefix + ts.def.joint, names),
                   name);
     }
     TorsionalLoad l;
@@ -1083,7 +1077,8 @@ Model build_model(const System& system, const BuildOptions& options) {
       return std::atan2(d.y(), d.x());
     };
     const double implied = angle0(l.body2) - angle0(l.body1);
-    if (ts.def.rest && !std::isfinite(*ts.def.rest)) throw Error(what + ": rest angle not finite", name);
+    if (ts.def.rest && !std::isfinite(*ts.def.rest))
+      throw Error(what + ": rest angle not finite", name);
     l.rest = ts.def.rest.value_or(implied);
     l.stiffness = ts.def.stiffness;
     l.damping = ts.def.damping;

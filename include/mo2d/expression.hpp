@@ -19,6 +19,7 @@
 
 #include "mo2d/error.hpp"
 #include "mo2d/jet.hpp"
+#include "mo2d/suggest.hpp"  // edit_distance, did_you_mean
 
 namespace mo2d {
 
@@ -73,10 +74,5 @@ class Expression {
   std::vector<Node> nodes_{};
   int root_ = -1;
 };
-
-// Edit distance (insertions, deletions, substitutions) and the closest candidate as
-// " (did you mean 'x'?)", or "" when nothing is close.
-std::size_t edit_distance(std::string_view a, std::string_view b);
-std::string did_you_mean(std::string_view name, std::span<const std::string> candidates);
 
 }  // namespace mo2d

@@ -1,0 +1,17 @@
+#pragma once
+// "Did you mean" suggestions for unknown names (labels, keys, parameters), shared by the model
+// builder, the scene loader and the expression parser.
+#include <cstddef>
+#include <span>
+#include <string>
+#include <string_view>
+
+namespace mo2d {
+
+// Levenshtein distance (insertions, deletions, substitutions).
+std::size_t edit_distance(std::string_view a, std::string_view b);
+
+// " (did you mean 'x'?)" for the closest candidate within max(3, |name| / 3) edits, else "".
+std::string did_you_mean(std::string_view name, std::span<const std::string> candidates);
+
+}  // namespace mo2d
