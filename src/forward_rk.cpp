@@ -95,9 +95,10 @@ class RkDriver {
     while (k < o_.samples) {
       const double t_out = output_time(k);
       double hh;
-      if (tab_.embedded) {
-        hh = std::min(h, t_out - t);
-        if (t_out - t - hh < 1e-12 * std::max(1.0, std::abs(t_out))) hh = t_out - t;
+      if (tab_.embedded) {  // free steps; the output times they pass are interpolated
+        const double t_end = o_.t1;
+        hh = std::min(h, t_end - t);
+        if (t_end - t - hh < 1e-12 * std::max(1.0, std::abs(t_end))) hh = t_end - t;
       } else {  // fixed step: equal steps that end on the output time
         const int nsteps = std::max(1, static_cast<int>(std::ceil((t_out - t) / o_.step - 1e-9)));
         hh = (t_out - t) / nsteps;
@@ -112,7 +113,7 @@ class RkDriver {
         }
         g_prev = g;
       }
-      const double t_new = (used == t_out - t) ? t_out : t + used;
+      const double t_new = (used == t_out - t) ? t_out : (used == o_.t1 - t) ? o_.t1 : t + used;
       // a step that jumped over a singular instant may pass output times: interpolate them
       while (k < o_.samples && output_time(k) < t_new)
         record_interpolated(rec, t, y, t_new, y_new, output_time(k++));
@@ -270,11 +271,25 @@ class RkDriver {
       y_new.segment(m_.n0, m_.n1) = q1_;
     }
   }
-  // State at an output time t_s inside the accepted step (t, y) -> (t1, y1): Hermite interpolation
-  // (quintic for q0 from q0, its rates and accelerations; cubic for q1, the work and the dissipated
-  // energy from their values and rates), projected on the constraint manifolds, then recorded.
+  // State at an output time t_s inside the accepted step (t, y) -> (t1, y1), recorded. First
+  // choice: one step of the method itself from (t, y) to t_s, as accurate as the run. If that step
+  // falls on a singular instant: Hermite interpolation (quintic for q0 from q0, its rates and
+  // accelerations; cubic for q1, the work and the dissipated energy from their values and rates),
+  // projected on the constraint manifolds.
   void record_interpolated(Recorder& rec, double t, const VectorXd& y, double t1,
                            const VectorXd& y1, double t_s) {
+    {
+      const bool had_start = have_start_;  // k_start_ belongs to t1: not the rates at t
+      have_start_ = false;
+      VectorXd ys(n_);
+      double err = 0;
+      const bool ok = step(t, y, t_s - t, ys, err);
+      have_start_ = had_start;
+      if (ok) {
+        record(rec, t_s, ys);
+        return;
+      }
+    }
     VectorXd& f0 = k_[0];  // rates at both ends (k_ is free between steps)
     VectorXd& f1 = k_[1];
     derivative(t, y, f0);
