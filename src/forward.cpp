@@ -16,6 +16,7 @@
 #include "mo2d/dynamics.hpp"
 #include "mo2d/error.hpp"
 #include "mo2d/kinematics.hpp"
+#include "mo2d/suggest.hpp"
 
 namespace mo2d {
 
@@ -219,19 +220,13 @@ std::vector<std::function<double(double)>> efforts_from_samples(const InverseRes
 }
 
 int ForwardResult::column(const std::string& l) const {
-  auto it = std::find(coordinate_labels.begin(), coordinate_labels.end(), l);
-  if (it == coordinate_labels.end()) throw Error("unknown coordinate '" + l + "'", l);
-  return static_cast<int>(it - coordinate_labels.begin());
+  return label_index(coordinate_labels, l, "coordinate");
 }
 int ForwardResult::reaction(const std::string& l) const {
-  auto it = std::find(reaction_labels.begin(), reaction_labels.end(), l);
-  if (it == reaction_labels.end()) throw Error("unknown reaction '" + l + "'", l);
-  return static_cast<int>(it - reaction_labels.begin());
+  return label_index(reaction_labels, l, "reaction");
 }
 int ForwardResult::rate_column(const std::string& l) const {
-  auto it = std::find(rate_labels.begin(), rate_labels.end(), l);
-  if (it == rate_labels.end()) throw Error("unknown quasi-velocity '" + l + "'", l);
-  return static_cast<int>(it - rate_labels.begin());
+  return label_index(rate_labels, l, "quasi-velocity");
 }
 
 }  // namespace mo2d

@@ -73,15 +73,11 @@ int cv_proj(realtype t, N_Vector ycur, N_Vector corr, realtype eps, N_Vector err
     Eigen::Map<VectorXd> e0(e, m.n0), e1(e + m.n0, m.n1);
     if (m.m0) {
       position_jacobian(m, q0, t, d.psi, d.Psi);
-      MatrixXd G = d.Psi * d.Psi.transpose();
-      G.diagonal().array() += 1e-13 * std::max(1.0, G.diagonal().maxCoeff());
-      e0 -= d.Psi.transpose() * G.llt().solve(d.Psi * e0);
+      e0 -= d.Psi.transpose() * regularized_normal_solve(d.Psi, e0, 1e-13);
     }
     if (m.m1) {
       velocity_jacobian(m, q0, t, d.A, d.b);
-      MatrixXd G = d.A * d.A.transpose();
-      G.diagonal().array() += 1e-13 * std::max(1.0, G.diagonal().maxCoeff());
-      e1 -= d.A.transpose() * G.llt().solve(d.A * e1);
+      e1 -= d.A.transpose() * regularized_normal_solve(d.A, e1, 1e-13);
     }
   }
   return 0;

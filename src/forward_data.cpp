@@ -21,6 +21,12 @@ std::string fmt(double v) {
   return s.str();
 }
 
+VectorXd regularized_normal_solve(const MatrixXd& J, const VectorXd& x, double eps) {
+  MatrixXd G = J * J.transpose();
+  G.diagonal().array() += eps * std::max(1.0, G.diagonal().maxCoeff());
+  return G.llt().solve(J * x);
+}
+
 ForwardData::ForwardData(const Model& model, const ForwardOptions& opt) : m(model), o(opt) {
   M = mass_matrix(m);
   B = input_matrix(m);
@@ -340,11 +346,7 @@ void ForwardData::compute_reactions(double t, const VectorXd& q0, const VectorXd
   scatter_local(m, la, w);
   inputs(t);
   if (m.m1 > 0) {
-    MatrixXd G = A * A.transpose();
-    G.diagonal().array() += 1e-14 * std::max(1.0, G.diagonal().maxCoeff());
-    llt_AAt.compute(G);
-    lam_ls.noalias() = A * (Bu - w);
-    llt_AAt.solveInPlace(lam_ls);
+    lam_ls = regularized_normal_solve(A, Bu - w, 1e-14);
   }
   detail::joint_reactions(m, entries, lam_ls, u, la, edge_force, edge_offset, reactions);
 }

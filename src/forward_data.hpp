@@ -13,6 +13,10 @@ namespace mo2d::detail {
 
 std::string fmt(double v);  // 6 significant digits, for messages
 
+// y = (J J^T + eps * max(1, max diag(J J^T)) I)^-1 J x: the least-squares multipliers of
+// J^T y = x, regularized where J loses rank (eps relative to the largest diagonal entry).
+VectorXd regularized_normal_solve(const MatrixXd& J, const VectorXd& x, double eps);
+
 // Workspace of one forward run.
 struct ForwardData {
   const Model& m;
@@ -25,7 +29,6 @@ struct ForwardData {
   std::vector<double> edge_force;
   std::vector<int> edge_offset;
   VectorXd reactions, la, w, lam_ls;
-  Eigen::LLT<MatrixXd> llt_AAt;
   Eigen::LLT<MatrixXd> llt_red;
   std::vector<int> independent;  // null space: independent quasi-velocities
   double alpha = 0;

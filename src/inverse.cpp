@@ -14,6 +14,7 @@
 #include "mo2d/dynamics.hpp"
 #include "mo2d/error.hpp"
 #include "mo2d/kinematics.hpp"
+#include "mo2d/suggest.hpp"
 
 namespace mo2d {
 
@@ -51,8 +52,8 @@ void check_finite_rows(const VectorXd& r, const std::vector<std::string>& labels
                        double t) {
   for (int k = 0; k < r.size(); ++k)
     if (!std::isfinite(r[k]))
-      throw Error(std::string(level) + " constraint '" + labels[k] + "' is not finite at t = " +
-                      fmt(t) + " s",
+      throw Error(std::string(level) + " constraint '" + labels[k] +
+                      "' is not finite at t = " + fmt(t) + " s",
                   labels[k], t);
 }
 
@@ -85,9 +86,11 @@ InverseData::InverseData(const Model& m, std::span<const Prescribed> prescribed,
                 m.name);
   }
   if (m.n0 - m.m0 != m.dof)
-    throw Error("inverse dynamics of '" + m.name + "' needs positions determined by the prescribed "
-                    "coordinates, but its position-level DOF (" + std::to_string(m.n0 - m.m0) +
-                    ") differs from its velocity-level DOF (" + std::to_string(m.dof) +
+    throw Error("inverse dynamics of '" + m.name +
+                    "' needs positions determined by the prescribed "
+                    "coordinates, but its position-level DOF (" +
+                    std::to_string(m.n0 - m.m0) + ") differs from its velocity-level DOF (" +
+                    std::to_string(m.dof) +
                     "): a coordinate or constraint given only at velocity level (non-holonomic) "
                     "leaves positions undetermined",
                 m.name);
@@ -96,7 +99,8 @@ InverseData::InverseData(const Model& m, std::span<const Prescribed> prescribed,
   colmap.assign(m.n0, 0);
   for (const auto& p : prescribed) {
     const int k = m.coordinate(p.coordinate);
-    if (!p.motion) throw Error("prescribed coordinate '" + p.coordinate + "' has no motion", p.coordinate);
+    if (!p.motion)
+      throw Error("prescribed coordinate '" + p.coordinate + "' has no motion", p.coordinate);
     if (colmap[k] < 0)
       throw Error("coordinate '" + p.coordinate + "' is prescribed twice", p.coordinate);
     colmap[k] = -1;
@@ -163,7 +167,8 @@ void evaluate_positions(const Model& m, InverseData& d, const VectorXd& q, doubl
   if (first)
     throw Error("the prescribed coordinates (" + prescribed_values(d) +
                     ") are not independent inputs: with them fixed the position constraints do "
-                    "not determine " + vars,
+                    "not determine " +
+                    vars,
                 d.p_labels.empty() ? "" : d.p_labels[0], t);
   throw Error("singular configuration at t = " + fmt(t) + " s (" + prescribed_values(d) +
                   "): the position constraints do not determine " + vars,
@@ -281,18 +286,21 @@ void inverse_dynamics_sample(const Model& m, InverseData& d, double t) {
   for (int k = 0; k < dof; ++k) d.K(m.m1 + k, d.p_index[k]) = 1.0;
   check_finite_rows(d.b, m.velocity_row_labels, "velocity", t);
   if (!d.K.allFinite())
-    throw Error("the velocity constraint Jacobian is not finite at t = " + fmt(t) + " s", m.name, t);
+    throw Error("the velocity constraint Jacobian is not finite at t = " + fmt(t) + " s", m.name,
+                t);
   d.pivot_ratio = d.lu_K.compute(d.K);
   if (d.pivot_ratio < o.singular_pivot_ratio) {
     const std::string vars = null_variables(d.K, m.rate_labels);
     if (!d.has_previous)
       throw Error("the prescribed coordinates (" + prescribed_values(d) +
                       ") are not independent inputs: the velocity constraints with them "
-                      "prescribed are singular (undetermined: " + vars + ")",
+                      "prescribed are singular (undetermined: " +
+                      vars + ")",
                   d.p_labels.empty() ? "" : d.p_labels[0], t);
     throw Error("singular configuration at t = " + fmt(t) + " s (" + prescribed_values(d) +
                     "): the constraint Jacobian with the prescribed coordinates loses rank "
-                    "(undetermined: " + vars + ")",
+                    "(undetermined: " +
+                    vars + ")",
                 vars.substr(0, vars.find(',')), t);
   }
   d.rhs.head(m.m1) = d.b;
@@ -384,20 +392,14 @@ InverseResult inverse_dynamics(const Model& m, std::span<const Prescribed> presc
   return r;
 }
 
-namespace {
-int find_label(const std::vector<std::string>& labels, const std::string& l, const char* what) {
-  auto it = std::find(labels.begin(), labels.end(), l);
-  if (it == labels.end()) throw Error(std::string("unknown ") + what + " '" + l + "'", l);
-  return static_cast<int>(it - labels.begin());
-}
-}  // namespace
-
 int InverseResult::column(const std::string& l) const {
-  return find_label(coordinate_labels, l, "coordinate");
+  return label_index(coordinate_labels, l, "coordinate");
 }
-int InverseResult::input(const std::string& l) const { return find_label(input_labels, l, "input"); }
+int InverseResult::input(const std::string& l) const {
+  return label_index(input_labels, l, "input");
+}
 int InverseResult::reaction(const std::string& l) const {
-  return find_label(reaction_labels, l, "reaction");
+  return label_index(reaction_labels, l, "reaction");
 }
 
 // ---- recursive orthogonal complement (Theorem 2.10) ---------------------------------------------

@@ -5,6 +5,8 @@
 #include <numeric>
 #include <vector>
 
+#include "mo2d/error.hpp"
+
 namespace mo2d {
 
 std::size_t edit_distance(std::string_view a, std::string_view b) {
@@ -29,6 +31,14 @@ std::string did_you_mean(std::string_view name, std::span<const std::string> can
   }
   if (best.empty() || best_d > std::max<std::size_t>(3, name.size() / 3)) return "";
   return " (did you mean '" + best + "'?)";
+}
+
+int label_index(std::span<const std::string> labels, const std::string& label, const char* what) {
+  const auto it = std::find(labels.begin(), labels.end(), label);
+  if (it == labels.end())
+    throw Error(std::string("unknown ") + what + " '" + label + "'" + did_you_mean(label, labels),
+                label);
+  return static_cast<int>(it - labels.begin());
 }
 
 }  // namespace mo2d

@@ -377,3 +377,27 @@ TEST(Forward, CsvHasLabelledHeader) {
             std::string::npos);
   EXPECT_EQ(std::count(csv.begin(), csv.end(), '\n'), 4);
 }
+
+// Result lookups by label name the unknown label and suggest the closest one.
+TEST(Forward, UnknownLabelsGetASuggestion) {
+  const Pendulum p = released_pendulum(0.5);
+  const ForwardResult r = forward_dynamics(
+      p.model, p.start, {.t0 = 0, .t1 = 0.01, .samples = 2, .integrator = Integrator::rk4});
+  auto message = [](auto&& f) {
+    try {
+      f();
+    } catch (const Error& e) {
+      return std::string(e.what());
+    }
+    return std::string("no error");
+  };
+  EXPECT_EQ(message([&] { r.column("link.P.xx"); }),
+            "unknown coordinate 'link.P.xx' (did you mean 'link.P.x'?)");
+  EXPECT_EQ(message([&] { r.rate_column("link.ww"); }),
+            "unknown quasi-velocity 'link.ww' (did you mean 'link.w'?)");
+  const auto ex = mechanisms::pendulum();
+  const InverseResult inv = inverse_dynamics(build_model(ex.system), ex.motion,
+                                             {.t0 = 0, .t1 = 0.1, .samples = 2});
+  EXPECT_EQ(message([&] { inv.input("pivot.torqe"); }),
+            "unknown input 'pivot.torqe' (did you mean 'pivot.torque'?)");
+}
