@@ -171,6 +171,12 @@ void run_cvode(const Model& m, ForwardData& d, const State& s0, const ForwardOpt
     const double t_out = o.t0 + (o.t1 - o.t0) * k / (o.samples - 1);
     check_flag(CVodeSetStopTime(mem, t_out), "CVodeSetStopTime", t);
     int flag = CVode(mem, t_out, y, &t, CV_NORMAL);
+    long taken = 0;  // max_steps bounds the whole run (CVODE's own limit is per call)
+    CVodeGetNumSteps(mem, &taken);
+    if (flag >= 0 && taken > o.max_steps)
+      throw Error("forward dynamics of '" + m.name + "': more than " + std::to_string(o.max_steps) +
+                      " steps before t = " + fmt(t),
+                  m.name, t);
     if (flag < 0) {
       std::ostringstream s;
       s << "forward dynamics of '" << m.name << "' stopped at t = " << fmt(t)

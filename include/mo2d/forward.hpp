@@ -64,7 +64,7 @@ struct ForwardOptions {
   double step = 1e-3;                // fixed step (rk4, baumgarte)
   double baumgarte_alpha = 20.0;     // 1/s, velocity-constraint feedback of the baumgarte mode
   double penalty = 0;                // augmented Lagrangian alpha (0: chosen from the mass scale)
-  int max_steps = 10'000'000;
+  int max_steps = 10'000'000;  // accepted steps over the whole run (all integrators)
   // Input efforts, one per Model::inputs entry (missing or empty = zero).
   std::vector<std::function<double(double t)>> efforts{};
   // Stop early when this function of the state changes sign (root finding between steps).
