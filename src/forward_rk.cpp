@@ -167,10 +167,14 @@ class RkDriver {
   }
   // One step of length h from (t, y) into y_new (projected). Returns false if a stage was not
   // accurate. err: scaled error estimate (embedded methods), else 0.
-  bool step(double t, const VectorXd& y, double h, VectorXd& y_new, double& err) {
+  // check = false: every stage is evaluated afresh and used whatever its accuracy (the fallback
+  // when a singular instant cannot be avoided, and the event search); returns true.
+  bool step(double t, const VectorXd& y, double h, VectorXd& y_new, double& err,
+            bool check = true) {
     bool ok = true;
     for (int i = 0; i < tab_.stages; ++i) {
-      if (i == 0 && have_start_) {  // the rates at the start: evaluated when the last step ended
+      if (i == 0 && have_start_ &&
+          check) {  // the rates at the start: evaluated when the last step ended
         k_[0] = k_start_;
         continue;
       }
@@ -178,7 +182,7 @@ class RkDriver {
       for (int j = 0; j < i; ++j)
         if (tab_.a[i][j] != 0) y_stage_.noalias() += (h * tab_.a[i][j]) * k_[j];
       ok = derivative(t + tab_.c[i] * h, y_stage_, k_[i]) && ok;
-      if (!ok) return false;
+      if (!ok && check) return false;
     }
     y_new = y;
     for (int i = 0; i < tab_.stages; ++i)
@@ -199,6 +203,7 @@ class RkDriver {
       y_new.head(m_.n0) = q0_;
       y_new.segment(m_.n0, m_.n1) = q1_;
     }
+    if (!check) return true;
     // the next step starts here: its first rates must be accurate too, or the next step could
     // not avoid the instant whatever its length
     return derivative(t + h, y_new, k_next_);
@@ -222,7 +227,7 @@ class RkDriver {
         // could not avoid it: accept the regularized accelerations, and say so
         double e2 = 0;
         d_.accel_ok = true;
-        step_ignoring_accuracy(t, y, hh, y_new, e2);
+        step(t, y, hh, y_new, e2, false);
         have_start_ = false;
         if (d_.stats.warnings.size() < 20)
           d_.stats.warnings.push_back("could not step over a singular configuration near t = " +
@@ -264,24 +269,7 @@ class RkDriver {
                     m_.name, t);
     }
   }
-  void step_ignoring_accuracy(double t, const VectorXd& y, double h, VectorXd& y_new, double& err) {
-    for (int i = 0; i < tab_.stages; ++i) {
-      y_stage_ = y;
-      for (int j = 0; j < i; ++j)
-        if (tab_.a[i][j] != 0) y_stage_.noalias() += (h * tab_.a[i][j]) * k_[j];
-      derivative(t + tab_.c[i] * h, y_stage_, k_[i]);
-    }
-    y_new = y;
-    for (int i = 0; i < tab_.stages; ++i)
-      if (tab_.b[i] != 0) y_new.noalias() += (h * tab_.b[i]) * k_[i];
-    err = 0;
-    if (project_) {
-      split(y_new);
-      d_.project(t + h, q0_, q1_, 1e-13 * m_.scale, 1e-13 * m_.scale);
-      y_new.head(m_.n0) = q0_;
-      y_new.segment(m_.n0, m_.n1) = q1_;
-    }
-  }
+
   // State at an output time t_s inside the accepted step (t, y) -> (t1, y1), recorded. First
   // choice: one step of the method itself from (t, y) to t_s, as accurate as the run. If that step
   // falls on a singular instant: Hermite interpolation (quintic for q0 from q0, its rates and
@@ -349,7 +337,7 @@ class RkDriver {
     for (int it = 0; it < 60; ++it) {
       const double mid = lo + (hi - lo) * g_lo / (g_lo - g_hi);
       double err = 0;
-      step_ignoring_accuracy(t, y, mid, y_try, err);
+      step(t, y, mid, y_try, err, false);
       const double g = event(t + mid, y_try);
       y_best = y_try;
       t_best = t + mid;
