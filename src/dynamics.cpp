@@ -25,13 +25,27 @@ inline void add_point_force(const Body& b, int ci, int cj, double gamma, double 
   (void)b;
 }
 
+// J (x_i, x_j) of Example 2.6 (b): the point (ci, cj, gamma, rho) from its two nodes' values.
+inline Vec2 combine_point(const Vec2& xi, const Vec2& xj, double gamma, double rho) {
+  return {(1 - gamma) * xi.x() + rho * xi.y() + gamma * xj.x() - rho * xj.y(),
+          -rho * xi.x() + (1 - gamma) * xi.y() + rho * xj.x() + gamma * xj.y()};
+}
+
+// Velocity (or acceleration, for x = q1 rates) of a body point: a fixed node contributes 0.
 inline Vec2 local_velocity_of_point(const Body& b, const Eigen::Ref<const VectorXd>& x, int ci,
                                     int cj, double gamma, double rho) {
   const Vec2 vi = node_velocity(b.nodes[ci], x);
   if (cj < 0) return vi;
-  const Vec2 vj = node_velocity(b.nodes[cj], x);
-  return {(1 - gamma) * vi.x() + rho * vi.y() + gamma * vj.x() - rho * vj.y(),
-          -rho * vi.x() + (1 - gamma) * vi.y() + rho * vj.x() + gamma * vj.y()};
+  return combine_point(vi, node_velocity(b.nodes[cj], x), gamma, rho);
+}
+
+// Position of a body point: a fixed node (joined to the ground) sits at its fixed position, which
+// is why positions must never go through the velocity helper above.
+inline Vec2 local_position_of_point(const Body& b, const Eigen::Ref<const VectorXd>& q0, int ci,
+                                    int cj, double gamma, double rho) {
+  const Vec2 pi = node_position(b.nodes[ci], q0);
+  if (cj < 0) return pi;
+  return combine_point(pi, node_position(b.nodes[cj], q0), gamma, rho);
 }
 
 }  // namespace
@@ -59,7 +73,7 @@ PointState point_state(const Model& m, const BodyPoint& bp, const Eigen::Ref<con
                        const Eigen::Ref<const VectorXd>& q1) {
   if (bp.body < 0) return {bp.fixed, Vec2(0, 0)};
   const Body& b = m.bodies[bp.body];
-  return {local_velocity_of_point(b, q0, bp.ci, bp.cj, bp.gamma, bp.rho),
+  return {local_position_of_point(b, q0, bp.ci, bp.cj, bp.gamma, bp.rho),
           local_velocity_of_point(b, q1, bp.ci, bp.cj, bp.gamma, bp.rho)};
 }
 

@@ -99,3 +99,26 @@ TEST(Springs, BadDefinitionsAreRefused) {
                 .find("two ground points"),
             std::string::npos);
 }
+
+// Trust issue item 1: a spring on a body whose node is pinned to the ground away from the origin.
+// A rod pivoted at ground (ax, 0), a spring from its midpoint to the ground point straight above,
+// rest length = initial length: zero spring energy and no motion, wherever the pivot is.
+TEST(Springs, SpringOnABodyPinnedAwayFromTheOrigin) {
+  for (double ax : {0.0, 1.0, -3.5}) {
+    System s("offset_pivot");
+    s.add_ground_node("A", {ax, 0});
+    s.add_body({.name = "rod", .nodes = {{"A", {ax, 0}}, {"P", {ax + 1, 0}}}, .mass = 1,
+                .inertia = 1.0 / 12, .com = CenterOfMass::between("A", "P", 0.5)});
+    s.add_revolute({.name = "pivot", .node_a = "ground.A", .node_b = "rod.A"});
+    s.add_spring({.name = "s", .body_a = "ground", .point_a = {ax + 0.5, 1}, .body_b = "rod",
+                  .point_b = {ax + 0.5, 0}, .rest_length = 1, .stiffness = 100});
+    const Model model = build_model(s);
+    EXPECT_NEAR(potential_energy(model, model.q0), 0.0, 1e-12) << "ax = " << ax;
+    const State st = consistent_state(model, {.positions = {}, .velocities = {{"rod.w", 0.0}}});
+    const ForwardResult r = forward_dynamics(
+        model, st, {.t0 = 0, .t1 = 1, .samples = 11, .integrator = Integrator::dopri5});
+    const int iy = r.column("rod.P.y");
+    for (int i = 0; i < r.time.size(); ++i)
+      EXPECT_NEAR(r.q0(i, iy), 0.0, 1e-12) << "ax = " << ax << ", t = " << r.time[i];
+  }
+}
