@@ -1,21 +1,37 @@
 #!/usr/bin/env bash
-# Fuzz the scene loader with libFuzzer (clang-14, ASan + UBSan) in its own build folder.
-#   ./scripts/fuzz.sh [SECONDS]        (default 120)
-# Seeds: mechanisms/*.yaml. New corpus entries go to build-fuzz/corpus; crash reproducers to
-# build-fuzz/crashes. Not part of the normal build or CI. Exit status: libFuzzer's (0 = no crash).
+# Fuzz mo2d with libFuzzer (clang-14, ASan + UBSan) in its own build folder.
+#   ./scripts/fuzz.sh [SECONDS]          the scene loader (default 120 s)
+#   ./scripts/fuzz.sh run [SECONDS]      loader + short inverse/forward runs with budgets
+# Seeds: mechanisms/*.yaml (and, for the runs, the reproduction scenes of shared/repro when that
+# folder is beside the checkout). New corpus entries go to build-fuzz/corpus[-run]; crash
+# reproducers to build-fuzz/crashes[-run]. Not part of the normal build or CI. Exit status:
+# libFuzzer's (0 = no crash).
 set -euo pipefail
 cd "$(dirname "${BASH_SOURCE[0]}")/.."
+target=mo2d_scene_fuzz
+suffix=""
+if [[ "${1:-}" == run ]]; then
+  target=mo2d_run_fuzz
+  suffix="-run"
+  shift
+fi
 seconds=${1:-120}
 build=build-fuzz
 
 cmake -S . -B "$build" -DCMAKE_BUILD_TYPE=RelWithDebInfo \
   -DCMAKE_CXX_COMPILER=clang++-14 -DMO2D_BUILD_FUZZ=ON -DMO2D_BUILD_TESTS=OFF \
   -DMO2D_BUILD_BENCH=OFF >/dev/null
-cmake --build "$build" -j2 --target mo2d_scene_fuzz
+cmake --build "$build" -j2 --target "$target"
 
-mkdir -p "$build/corpus" "$build/seeds" "$build/crashes"
-cp mechanisms/*.yaml "$build/seeds/"
-# -max_len: scene files are small; -timeout: a hang is a bug too; one job (2 shared cores)
-"$build/tests/fuzz/mo2d_scene_fuzz" -max_total_time="$seconds" -max_len=8192 -timeout=10 \
-  -rss_limit_mb=2048 -artifact_prefix="$build/crashes/" -print_final_stats=1 \
-  "$build/corpus" "$build/seeds"
+corpus="$build/corpus$suffix" seeds="$build/seeds$suffix" crashes="$build/crashes$suffix"
+mkdir -p "$corpus" "$seeds" "$crashes"
+cp mechanisms/*.yaml "$seeds/"
+if [[ -n "$suffix" && -d ../shared/repro ]]; then
+  for f in ../shared/repro/*.yaml; do cp "$f" "$seeds/repro_$(basename "$f")"; done
+fi
+# -max_len: scene files are small; -timeout: a hang is a bug too (the runs have step budgets, so
+# 20 s is far beyond any budgeted run); one job (2 shared cores)
+timeout=10
+[[ -n "$suffix" ]] && timeout=20
+"$build/tests/fuzz/$target" -max_total_time="$seconds" -max_len=8192 -timeout="$timeout" \
+  -rss_limit_mb=2048 -artifact_prefix="$crashes/" -print_final_stats=1 "$corpus" "$seeds"
