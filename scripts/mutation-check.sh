@@ -24,6 +24,11 @@ mutations=(
   "rigid-body acceleration bias sign|src/constraints.hpp|s/const Vec2 e = w \* perp(node_velocity/const Vec2 e = -w * perp(node_velocity/"
   "slider acceleration bias dropped|src/constraints.hpp|s/const Vec2 e = (2 \* q1\[c.q\]/const Vec2 e = (0 * q1[c.q]/"
   "reaction split sign|src/reactions.cpp|s/F\[i\] = -local\[base + i\];/F[i] = local[base + i];/"
+  # a body point evaluated with the wrong helper (trust issue, item 1): positions through the
+  # velocity helper, which puts a node joined to the ground at the origin
+  "spring point position through the velocity helper|src/dynamics.cpp|s/return {local_position_of_point(b, q0, bp.ci/return {local_velocity_of_point(b, q0, bp.ci/"
+  "centre of mass position through the velocity helper|src/build_model.cpp|s/const Vec2 d = node_position(b.nodes\[b.cj\], q0) - pi;/const Vec2 d = node_velocity(b.nodes[b.cj], q0) - pi;/"
+  "spring tension sign (on its first point)|src/dynamics.cpp|s/s.a.rho, T \* st.e,/s.a.rho, -T * st.e,/"
 )
 status=0
 for entry in "${mutations[@]}"; do
