@@ -21,6 +21,7 @@ struct CrosscheckCliOptions {
   SceneOptions scene{};
   double step = 1.0 / 2000;
   double inertia_fraction = 0;
+  double feedback_time = -1;  // < 0: the library's default
   bool strict = false;
 };
 
@@ -59,6 +60,7 @@ int crosscheck(const CrosscheckCliOptions& o) {
   CrosscheckOptions check;
   check.step = o.step;
   check.zero_inertia_fraction = o.inertia_fraction;
+  if (o.feedback_time >= 0) check.feedback_time = o.feedback_time;
   const CrosscheckReport r =
       crosscheck_inverse(scene.system, scene.motion, inverse_options(scene), check);
   print_crosscheck_table(std::cout, r);
@@ -86,6 +88,9 @@ Command add_crosscheck_command(CLI::App& app) {
   sub->add_option("--point-mass-inertia", o->inertia_fraction,
                   "give point masses on massless links I = f m L^2 in both engines (Box2D cannot "
                   "turn a body without inertia); default 0: refuse them")
+      ->check(CLI::NonNegativeNumber);
+  sub->add_option("--feedback-time", o->feedback_time,
+                  "time constant of the motors' position feedback in s (0: none)")
       ->check(CLI::NonNegativeNumber);
   sub->add_flag("--strict", o->strict, "exit with status 3 when the engines disagree");
   return {sub, [o] { return crosscheck(*o); }};
