@@ -25,7 +25,9 @@ void print_inverse_table(const Model& model, const InverseResult& r, const Inver
               1e6 * r.cpu_seconds / static_cast<double>(r.time.size()));
 }
 
-double energy_error(const ForwardResult& r) { return energy_balance_error(r); }
+double energy_error(const ForwardResult& r) {
+  return energy_balance_error(r);
+}
 
 void print_forward_table(const Model& model, const ForwardResult& r, const ForwardOptions& run) {
   std::printf(
