@@ -26,13 +26,7 @@ void print_inverse_table(const Model& model, const InverseResult& r, const Inver
 }
 
 double energy_error(const ForwardResult& r) {
-  if (r.time.size() == 0) return 0;
-  const double e0 = r.kinetic[0] + r.potential[0];
-  double worst = 0;
-  for (Eigen::Index k = 0; k < r.time.size(); ++k)
-    worst = std::max(
-        worst, std::abs(r.kinetic[k] + r.potential[k] - e0 - r.input_work[k] + r.dissipated[k]));
-  return worst;
+  return energy_balance_error(r);
 }
 
 void print_forward_table(const Model& model, const ForwardResult& r, const ForwardOptions& run) {

@@ -12,6 +12,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <cstdio>
 
 #include "box2d_world.hpp"
 #include "mo2d/crosscheck.hpp"
@@ -23,6 +24,12 @@ namespace {
 
 using crosscheck_detail::Box2DWorld;
 using crosscheck_detail::JointMap;
+
+std::string num(double v) {  // 6 significant digits, for messages
+  char b[32];
+  std::snprintf(b, sizeof b, "%.6g", v);
+  return b;
+}
 
 int label_index(const std::vector<std::string>& labels, const std::string& label) {
   for (size_t k = 0; k < labels.size(); ++k)
@@ -101,11 +108,35 @@ CrosscheckReport crosscheck_inverse(const Model& reference_in, const Model& simu
   const int steps = static_cast<int>(std::floor((options.t1 - t0) / h + 1e-9));
   InverseData sim(simulated, motion, options), ref(reference, motion, options);
 
-  // Velocities of t0 - h/2, positions of t0 (see the top of this file).
-  inverse_dynamics_sample(simulated, sim, t0 - h / 2);
-  const Eigen::VectorXd q1_start = sim.q1;
-  sim.has_previous = false;
-  inverse_dynamics_sample(simulated, sim, t0);
+  // Box2D starts `settle` steps before t0 (see CrosscheckOptions::settle_steps): velocities of
+  // t_start - h/2, positions of t_start (see the top of this file).
+  int settle = std::max(check.settle_steps, 0);
+  Eigen::VectorXd q1_start;
+  for (;;) {
+    const double t_start = t0 - settle * h;
+    try {
+      sim.has_previous = false;
+      inverse_dynamics_sample(simulated, sim, t_start - h / 2);
+      q1_start = sim.q1;
+      sim.has_previous = false;
+      inverse_dynamics_sample(simulated, sim, t_start);
+      break;
+    } catch (const Error& e) {
+      if (settle == 0) throw;
+      r.notes.push_back("the motion cannot be solved before t0 (" + std::string(e.what()) +
+                        "): Box2D starts at t0, its first " + std::to_string(check.skip_steps) +
+                        " steps are not compared");
+      settle = 0;
+    }
+  }
+  const int skip = settle > 0 ? 0 : std::max(check.skip_steps, 0);
+  if (steps - skip < check.min_compared_steps)
+    throw Error("Box2D cross-check of '" + simulated.name +
+                    "': " + std::to_string(std::max(steps - skip, 0)) + " steps of " + num(h) +
+                    " s over [" + num(t0) + ", " + num(options.t1) +
+                    "] s would be compared, fewer than " +
+                    std::to_string(check.min_compared_steps) + ": use a smaller step",
+                simulated.name);
   Box2DWorld w = build_box2d_world(simulated, sim.q0, q1_start, check, true);
 
   std::vector<const JointMap*> motors;
@@ -139,7 +170,7 @@ CrosscheckReport crosscheck_inverse(const Model& reference_in, const Model& simu
 
   const int n_motor = static_cast<int>(motors.size());
   const int n_joint = static_cast<int>(w.joints.size());
-  const int rows = std::max(steps - check.skip_steps, 0);
+  const int rows = steps - skip;
   r.time.resize(rows);
   r.mo2d_efforts.resize(rows, n_motor);
   r.box2d_efforts.resize(rows, n_motor);
@@ -154,12 +185,23 @@ CrosscheckReport crosscheck_inverse(const Model& reference_in, const Model& simu
     if (motors[k]->linear_motor) s_exact[k] = s_now[k];
   }
   const double inv_dt = 1.0 / h;
-  for (int n = 0; n < steps; ++n) {
+  for (int n = -settle; n < steps; ++n) {
     const double t = t0 + n * h;
     inverse_dynamics_sample(simulated, sim, t + h);
     for (int k = 0; k < n_motor; ++k) {
       const double s_next = joint_coordinate(simulated, w, *motors[k], sim.q0);
       const double ds = motors[k]->linear_motor ? s_next - s_now[k] : wrap_angle(s_next - s_now[k]);
+      const double moved = std::fabs(ds) / (motors[k]->linear_motor ? simulated.scale : 1.0);
+      if (check.max_motion_per_step > 0 && moved > check.max_motion_per_step)
+        throw Error("Box2D cross-check of '" + simulated.name + "': the step " + num(h) +
+                        " s is too coarse for this motion: joint '" + motors[k]->name + "' moves " +
+                        num(moved) +
+                        (motors[k]->linear_motor ? " of the mechanism's size" : " rad") +
+                        " in the step at t = " + num(t) + " s, more than the " +
+                        num(check.max_motion_per_step) +
+                        " the tolerances hold for (docs/crosscheck.md): use a step <= " +
+                        num(h * check.max_motion_per_step / moved) + " s",
+                    motors[k]->name, t);
       double speed = ds / h;
       if (check.feedback_time > 0)
         speed += (s_exact[k] - box2d_joint_coordinate(*motors[k])) / check.feedback_time;
@@ -173,8 +215,8 @@ CrosscheckReport crosscheck_inverse(const Model& reference_in, const Model& simu
       const double err = box2d_joint_coordinate(*motors[k]) - s_exact[k];
       r.tracking_error = std::fmax(r.tracking_error, std::fabs(err));
     }
-    if (n < check.skip_steps) continue;
-    const int row = n - check.skip_steps;
+    if (n < skip) continue;
+    const int row = n - skip;
     const double tc = t + check.sample_offset * h;
     inverse_dynamics_sample(reference, ref, tc);
     r.time[row] = tc;
@@ -191,6 +233,8 @@ CrosscheckReport crosscheck_inverse(const Model& reference_in, const Model& simu
     }
   }
   r.steps = steps;
+  r.settle_steps = settle;
+  r.compared_steps = rows;
 
   for (int k = 0; k < n_motor; ++k) {
     r.efforts.push_back(

@@ -23,9 +23,10 @@ void print_crosscheck_table(std::ostream& out, const CrosscheckReport& r) {
   char head[512];
   std::snprintf(head, sizeof head,
                 "Box2D cross-check: %s, h = %.6g s, %d velocity / %d position iterations, %d "
-                "steps, compared at t_n + %.3g h, feedback time %.3g s\n",
+                "steps (after %d settling steps), %d compared at t_n + %.3g h, feedback time "
+                "%.3g s\n",
                 r.mechanism.c_str(), r.step, r.velocity_iterations, r.position_iterations, r.steps,
-                r.sample_offset, r.feedback_time);
+                r.settle_steps, r.compared_steps, r.sample_offset, r.feedback_time);
   out << head;
   for (const std::string& n : r.notes) out << "  note: " << n << "\n";
   char cols[256];

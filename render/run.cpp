@@ -119,11 +119,18 @@ Plot inverse_residuals_plot(const InverseResult& r) {
 
 Plot energies_plot(const ForwardResult& r) {
   Plot p = time_plot(r.time);
-  const Eigen::VectorXd balance = r.kinetic + r.potential - r.input_work + r.dissipated;
+  // K + V - W + D, not its deviation from the start: the curve is flat at K + V (t0)
+  const Eigen::VectorXd balance =
+      energy_balance(r).array() + (r.kinetic.size() ? r.kinetic[0] + r.potential[0] : 0.0);
   p.series.push_back({"kinetic", values(r.time), values(r.kinetic), {}, false, false});
   p.series.push_back({"potential", values(r.time), values(r.potential), {}, false, false});
   if (r.input_work.size() == r.time.size())
     p.series.push_back({"input work", values(r.time), values(r.input_work), {}, true, false});
+  if (r.load_work.size() == r.time.size() && r.load_work.cwiseAbs().maxCoeff() > 0)
+    p.series.push_back({"load work", values(r.time), values(r.load_work), {}, true, false});
+  if (r.constraint_work.size() == r.time.size() && r.constraint_work.cwiseAbs().maxCoeff() > 0)
+    p.series.push_back(
+        {"constraint work", values(r.time), values(r.constraint_work), {}, true, false});
   if (r.dissipated.size() == r.time.size())
     p.series.push_back({"dissipated", values(r.time), values(r.dissipated), {}, true, false});
   if (balance.size() == r.time.size())

@@ -75,12 +75,13 @@ std::string forward_csv(const ForwardResult& r) {
   std::ostringstream s;
   s.precision(17);
   common_header(s, r);
-  s << ",energy.kinetic,energy.potential,work.inputs,energy.dissipated";
+  s << ",energy.kinetic,energy.potential,work.inputs,energy.dissipated,work.loads,work.constraints";
   s << ",residual.position,residual.velocity\n";
   for (int k = 0; k < r.time.size(); ++k) {
     common_row(s, r, k);
     s << "," << r.kinetic[k] << "," << r.potential[k] << "," << r.input_work[k] << ","
-      << r.dissipated[k] << "," << r.residuals(k, 0) << "," << r.residuals(k, 1) << "\n";
+      << r.dissipated[k] << "," << r.load_work[k] << "," << r.constraint_work[k] << ","
+      << r.residuals(k, 0) << "," << r.residuals(k, 1) << "\n";
   }
   return s.str();
 }

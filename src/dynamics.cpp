@@ -132,6 +132,19 @@ double damping_power(const Model& m, const Eigen::Ref<const VectorXd>& q0,
   return p;
 }
 
+double load_power(const Model& m, const Eigen::Ref<const VectorXd>& q0,
+                  const Eigen::Ref<const VectorXd>& q1, double t) {
+  double p = 0;
+  for (const auto& f : m.forces) {  // F . v of the point it acts on
+    const Vec2 F(f.fx ? f.fx(t) : 0.0, f.fy ? f.fy(t) : 0.0);
+    const BodyPoint bp{f.body, f.ci, f.cj, f.gamma, f.rho, Vec2(0, 0)};
+    p += F.dot(point_state(m, bp, q0, q1).v);
+  }
+  for (const auto& tq : m.torques)  // tau . omega of its body
+    p += (tq.torque ? tq.torque(t) : 0.0) * omega_value(m.bodies[tq.body].omega, q1);
+  return p;
+}
+
 void body_applied(const Model& m, const Eigen::Ref<const VectorXd>& q0,
                   const Eigen::Ref<const VectorXd>& q1, double t, Eigen::Ref<VectorXd> local) {
   local.setZero();

@@ -59,6 +59,20 @@ double kinetic_energy(const Model& m, const VectorXd& q1) {
   return 0.5 * q1.dot(Mq);
 }
 
+VectorXd energy_balance(const ForwardResult& r) {
+  const Eigen::Index n = r.time.size();
+  if (n == 0) return VectorXd();
+  auto or_zero = [n](const VectorXd& v) { return v.size() == n ? v : VectorXd(VectorXd::Zero(n)); };
+  const VectorXd e = r.kinetic + r.potential;
+  return e.array() - e[0] - or_zero(r.input_work).array() - or_zero(r.load_work).array() -
+         or_zero(r.constraint_work).array() + or_zero(r.dissipated).array();
+}
+
+double energy_balance_error(const ForwardResult& r) {
+  const VectorXd b = energy_balance(r);
+  return b.size() ? b.cwiseAbs().maxCoeff() : 0.0;
+}
+
 State consistent_state(const Model& m, const InitialConditions& ic, double t0) {
   VectorXd q0 = m.q0;
   std::vector<int> fixed;
@@ -134,7 +148,8 @@ ForwardResult forward_dynamics(const Model& m, const State& initial, const Forwa
   r.q0 = MatrixXd::Zero(N, m.n0);
   r.q1 = MatrixXd::Zero(N, m.n1);
   r.a1 = MatrixXd::Zero(N, m.n1);
-  r.kinetic = r.potential = r.input_work = r.dissipated = VectorXd::Zero(N);
+  r.kinetic = r.potential = r.input_work = r.load_work = r.constraint_work = r.dissipated =
+      VectorXd::Zero(N);
   r.residuals = MatrixXd::Zero(N, 2);
   Recorder rec{m, r, d};
   const double start = detail::cpu_seconds();
@@ -161,6 +176,8 @@ ForwardResult forward_dynamics(const Model& m, const State& initial, const Forwa
   r.kinetic.conservativeResize(used);
   r.potential.conservativeResize(used);
   r.input_work.conservativeResize(used);
+  r.load_work.conservativeResize(used);
+  r.constraint_work.conservativeResize(used);
   r.dissipated.conservativeResize(used);
   r.residuals.conservativeResize(used, Eigen::NoChange);
   r.efforts.conservativeResize(used, Eigen::NoChange);

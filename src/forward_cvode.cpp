@@ -11,6 +11,7 @@
 #include <algorithm>
 #include <memory>
 #include <sstream>
+#include <vector>
 
 #include "forward_data.hpp"
 #include "mo2d/dynamics.hpp"
@@ -24,6 +25,7 @@ struct CvodeUser {
   const Model* m;
   ForwardData* d;
   VectorXd q0, q1;
+  std::vector<int> terms;  // the EnergyTerms carried after (q0, q1), in order
   bool baumgarte = false;
   std::string last_error;  // message of the last failed right-hand side evaluation
 };
@@ -44,8 +46,9 @@ int cv_rhs(realtype t, N_Vector y, N_Vector ydot, void* user) {
   Eigen::Map<VectorXd>(out, m.n0) = u->q1.head(m.n0);
   Eigen::Map<VectorXd>(out + m.n0, m.n1) = u->d->a;
 
-  out[m.n0 + m.n1] = u->d->Bu.dot(u->q1);
-  out[m.n0 + m.n1 + 1] = damping_power(m, u->q0, u->q1);
+  double rates[kEnergyTerms];
+  energy_rates(*u->d, t, u->q0, u->q1, rates);
+  for (size_t k = 0; k < u->terms.size(); ++k) out[m.n0 + m.n1 + k] = rates[u->terms[k]];
   return 0;
 }
 
@@ -67,7 +70,7 @@ int cv_proj(realtype t, N_Vector ycur, N_Vector corr, realtype eps, N_Vector err
   Eigen::Map<VectorXd>(c, m.n0) = q0 - q0s;
   Eigen::Map<VectorXd>(c + m.n0, m.n1) = q1 - q1s;
 
-  c[m.n0 + m.n1] = c[m.n0 + m.n1 + 1] = 0;
+  std::fill(c + m.n0 + m.n1, c + N_VGetLength(corr), 0.0);
   if (err) {  // project the error estimate on the tangent spaces
     double* e = N_VGetArrayPointer(err);
     Eigen::Map<VectorXd> e0(e, m.n0), e1(e + m.n0, m.n1);
@@ -116,7 +119,17 @@ void check_flag(int flag, const char* call, double t) {
 
 void run_cvode(const Model& m, ForwardData& d, const State& s0, const ForwardOptions& o,
                Recorder& rec) {
-  const int n = m.n0 + m.n1 + 2;  // q0, q1, input work, dissipated energy
+  // q0, q1 and the energy terms the model has (a term that stays 0 would dilute CVODE's RMS error
+  // norm, i.e. loosen the tolerance of the state): the input work and the dissipated energy
+  // always, the load work with forces or torques, the constraint work with user constraints.
+  std::vector<int> terms = {kInputWork, kDissipated};
+  if (!m.forces.empty() || !m.torques.empty()) terms.push_back(kLoadWork);
+  for (const Constraint& k : m.constraints)
+    if (k.kind == ConstraintKind::user_position || k.kind == ConstraintKind::user_velocity) {
+      terms.push_back(kConstraintWork);
+      break;
+    }
+  const int n = m.n0 + m.n1 + static_cast<int>(terms.size());
   SUNContext ctx = nullptr;
   check_flag(SUNContext_Create(nullptr, &ctx), "SUNContext_Create", o.t0);
   std::unique_ptr<std::remove_pointer_t<SUNContext>, SundialsDeleter> ctx_guard(ctx);
@@ -127,16 +140,20 @@ void run_cvode(const Model& m, ForwardData& d, const State& s0, const ForwardOpt
   double* yd = N_VGetArrayPointer(y);
   Eigen::Map<VectorXd>(yd, m.n0) = s0.q0;
   Eigen::Map<VectorXd>(yd + m.n0, m.n1) = s0.q1;
-  yd[n - 2] = yd[n - 1] = 0;
+  std::fill(yd + m.n0 + m.n1, yd + n, 0.0);
+  double energies[kEnergyTerms] = {};
+  auto read_energies = [&] {
+    for (size_t k = 0; k < terms.size(); ++k) energies[terms[k]] = yd[m.n0 + m.n1 + k];
+  };
   N_VConst(o.atol, atol);
-  // The input work and dissipated energy (J) are under error control like the state: left out,
+  // The works and dissipated energy (J) are under error control like the state: left out,
   // their error depends on the step sizes the state happens to need (energy balances then held or
   // failed by luck).
   const bool bdf = o.integrator == Integrator::cvode_bdf;
   void* mem = CVodeCreate(bdf ? CV_BDF : CV_ADAMS, ctx);
   if (!mem) throw Error("SUNDIALS CVodeCreate failed", "CVodeCreate", o.t0);
   std::unique_ptr<void, void (*)(void*)> mem_guard(mem, [](void* p) { CVodeFree(&p); });
-  CvodeUser user{&m, &d, VectorXd(m.n0), VectorXd(m.n1), false, {}};
+  CvodeUser user{&m, &d, VectorXd(m.n0), VectorXd(m.n1), terms, false, {}};
   check_flag(CVodeInit(mem, cv_rhs, o.t0, y), "CVodeInit", o.t0);
   check_flag(CVodeSetUserData(mem, &user), "CVodeSetUserData", o.t0);
   check_flag(CVodeSetErrHandlerFn(mem, cv_error_handler, &d.stats), "CVodeSetErrHandlerFn", o.t0);
@@ -165,7 +182,7 @@ void run_cvode(const Model& m, ForwardData& d, const State& s0, const ForwardOpt
   }
   if (o.stop_when) check_flag(CVodeRootInit(mem, 1, cv_root), "CVodeRootInit", o.t0);
   VectorXd q0 = s0.q0, q1 = s0.q1;
-  rec.record(o.t0, q0, q1, 0.0, 0.0);
+  rec.record(o.t0, q0, q1, energies);
   double t = o.t0;
   for (int k = 1; k < o.samples; ++k) {
     const double t_out = o.t0 + (o.t1 - o.t0) * k / (o.samples - 1);
@@ -193,7 +210,8 @@ void run_cvode(const Model& m, ForwardData& d, const State& s0, const ForwardOpt
     }
     q0 = Eigen::Map<const VectorXd>(yd, m.n0);
     q1 = Eigen::Map<const VectorXd>(yd + m.n0, m.n1);
-    rec.record(t, q0, q1, yd[n - 2], yd[n - 1]);
+    read_energies();
+    rec.record(t, q0, q1, energies);
     if (flag == CV_ROOT_RETURN) {
       d.stats.stopped_by_event = true;
       break;

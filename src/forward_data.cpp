@@ -356,8 +356,17 @@ double ForwardData::pivot_indicator(double t, const VectorXd& q0) {
   return row_conditioning();
 }
 
-void Recorder::record(double t, const VectorXd& q0, const VectorXd& q1, double work,
-                      double dissipated) {
+void energy_rates(ForwardData& d, double t, const VectorXd& q0, const VectorXd& q1, double* rates) {
+  rates[kInputWork] = d.Bu.dot(q1);
+  rates[kLoadWork] = load_power(d.m, q0, q1, t);
+  // A time-dependent constraint (A q1 = b, b != 0) moves its bodies: its force -A^T lambda =
+  // M a - f - B u does the work -lambda^T b. Zero (not evaluated) for fixed constraints.
+  rates[kConstraintWork] =
+      d.m.m1 > 0 && d.b.lpNorm<Eigen::Infinity>() > 0 ? q1.dot(d.M * d.a - d.f - d.Bu) : 0.0;
+  rates[kDissipated] = damping_power(d.m, q0, q1);
+}
+
+void Recorder::record(double t, const VectorXd& q0, const VectorXd& q1, const double* energies) {
   if (d.o.progress) d.o.progress(t);
   r.time[k] = t;
   r.q0.row(k) = q0.transpose();
@@ -369,8 +378,10 @@ void Recorder::record(double t, const VectorXd& q0, const VectorXd& q1, double w
   r.efforts.row(k) = d.u.transpose();
   r.kinetic[k] = kinetic_energy(m, q1);
   r.potential[k] = potential_energy(m, q0);
-  r.input_work[k] = work;
-  r.dissipated[k] = dissipated;
+  r.input_work[k] = energies[kInputWork];
+  r.load_work[k] = energies[kLoadWork];
+  r.constraint_work[k] = energies[kConstraintWork];
+  r.dissipated[k] = energies[kDissipated];
   VectorXd psi(m.m0);
   position_residual(m, q0, t, psi);
   r.residuals(k, 0) = m.m0 ? psi.lpNorm<Eigen::Infinity>() : 0.0;

@@ -74,12 +74,19 @@ struct ForwardData {
   double pivot_indicator(double t, const VectorXd& q0);
 };
 
+// The energy terms integrated along the run, carried as extra states after (q0, q1) under the
+// same error control and stages as the state (so that the balance holds to integration accuracy).
+enum EnergyTerm { kInputWork, kLoadWork, kConstraintWork, kDissipated, kEnergyTerms };
+// Their rates (powers, W) at (t, q0, q1), right after d.accelerations(t, q0, q1, .) there.
+void energy_rates(ForwardData& d, double t, const VectorXd& q0, const VectorXd& q1, double* rates);
+
 struct Recorder {
   const Model& m;
   ForwardResult& r;
   ForwardData& d;
   int k = 0;
-  void record(double t, const VectorXd& q0, const VectorXd& q1, double work, double dissipated);
+  // energies: the kEnergyTerms integrated terms at t
+  void record(double t, const VectorXd& q0, const VectorXd& q1, const double* energies);
 };
 
 // Integrator drivers: integrate from s0 to o.t1, recording every output time.

@@ -63,7 +63,8 @@ Tableau dormand_prince_54() {
 // jump over the instant's neighbourhood (where the regularized accelerations are not accurate).
 constexpr std::array<double, 11> kRetry = {0.5, 0.3, 0.7, 0.2, 0.85, 1.5, 2, 3, 4, 6, 8};
 
-// One run of an explicit RK method. The state y = (q0, q1, input work, dissipated energy).
+// One run of an explicit RK method. The state y = (q0, q1, the energy terms of EnergyTerm), the
+// energy terms integrated by the same stages as the state.
 class RkDriver {
  public:
   RkDriver(const Model& m, ForwardData& d, const ForwardOptions& o, Tableau tab)
@@ -71,7 +72,7 @@ class RkDriver {
         d_(d),
         o_(o),
         tab_(tab),
-        n_(m.n0 + m.n1 + 2),
+        n_(m.n0 + m.n1 + kEnergyTerms),
         q0_(m.n0),
         q1_(m.n1),
         y_stage_(n_),
@@ -84,7 +85,7 @@ class RkDriver {
 
   void run(const State& s0, Recorder& rec) {
     VectorXd y(n_), y_new(n_);
-    y << s0.q0, s0.q1, 0.0, 0.0;
+    y << s0.q0, s0.q1, VectorXd::Zero(kEnergyTerms);
     double t = o_.t0;
     record(rec, t, y);
     double g_prev = event(t, y);
@@ -161,8 +162,7 @@ class RkDriver {
     d_.accelerations(t, q0_, q1_, !project_);
     k.head(m_.n0) = q1_.head(m_.n0);
     k.segment(m_.n0, m_.n1) = d_.a;
-    k[n_ - 2] = d_.Bu.dot(q1_);
-    k[n_ - 1] = damping_power(m_, q0_, q1_);
+    energy_rates(d_, t, q0_, q1_, k.data() + m_.n0 + m_.n1);
     return d_.accel_ok;
   }
   // One step of length h from (t, y) into y_new (projected). Returns false if a stage was not
@@ -192,7 +192,7 @@ class RkDriver {
       err_.setZero();
       for (int i = 0; i < tab_.stages; ++i)
         if (tab_.b[i] != tab_.bhat[i]) err_.noalias() += (h * (tab_.b[i] - tab_.bhat[i])) * k_[i];
-      for (int j = 0; j < n_ - 2; ++j) {
+      for (int j = 0; j < m_.n0 + m_.n1; ++j) {
         const double scale = o_.atol + o_.rtol * std::max(std::abs(y[j]), std::abs(y_new[j]));
         err = std::max(err, std::abs(err_[j]) / scale);
       }
@@ -325,7 +325,7 @@ class RkDriver {
   void record(Recorder& rec, double t, const VectorXd& y) {
     split(y);
     const VectorXd q0 = q0_, q1 = q1_;
-    rec.record(t, q0, q1, y[n_ - 2], y[n_ - 1]);
+    rec.record(t, q0, q1, y.data() + m_.n0 + m_.n1);
   }
   // The stop condition changed sign over the step (t, t + h]: locate the crossing by the secant
   // method on the step length (each try redoes the step from (t, y)), record it and stop.

@@ -16,8 +16,9 @@ std::string inverse_csv(const InverseResult& r);
 void write_inverse_csv(const InverseResult& r, const std::string& path);
 
 // Columns: t, coordinates, quasi-velocities, their derivatives (label + ".dot"), efforts,
-// reactions, energy.kinetic,
-// energy.potential, work.inputs, energy.dissipated, residual.position, residual.velocity.
+// reactions, energy.kinetic, energy.potential, work.inputs, energy.dissipated, work.loads (forces
+// and torques), work.constraints (time-dependent constraints), residual.position,
+// residual.velocity.
 std::string forward_csv(const ForwardResult& r);
 void write_forward_csv(const ForwardResult& r, const std::string& path);
 

@@ -34,6 +34,11 @@ void applied_forces(const Model& m, const Eigen::Ref<const VectorXd>& q0,
 double potential_energy(const Model& m, const Eigen::Ref<const VectorXd>& q0);
 double damping_power(const Model& m, const Eigen::Ref<const VectorXd>& q0,
                      const Eigen::Ref<const VectorXd>& q1);
+// Power of the applied forces (F . v of their points) and torques (tau . omega of their bodies)
+// at time t: what the energy balance integrates as their work (gravity and the springs' elastic
+// forces are in potential_energy, their dampers in damping_power, the inputs are B u . q1).
+double load_power(const Model& m, const Eigen::Ref<const VectorXd>& q0,
+                  const Eigen::Ref<const VectorXd>& q1, double t);
 // Input matrix B (n1 x inputs): generalized force per unit effort.
 MatrixXd input_matrix(const Model& m);
 

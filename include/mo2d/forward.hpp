@@ -94,7 +94,9 @@ struct ForwardResult {
   VectorXd time;
   MatrixXd q0, q1, a1;         // samples x n0 / n1 / n1
   VectorXd kinetic, potential;  // energies (J); potential of gravity (datum y = 0) and springs
-  VectorXd input_work;          // integral of the input power from t0 (J)
+  VectorXd input_work;          // integral of the input power B u . q1 from t0 (J)
+  VectorXd load_work;           // integral of the power of the applied forces and torques (J)
+  VectorXd constraint_work;     // integral of the power of time-dependent constraints (J)
   VectorXd dissipated;          // integral of the damper power from t0 (J, >= 0)
   MatrixXd residuals;           // samples x 2: |psi|_inf, |A q1 - b|_inf
   MatrixXd efforts;             // samples x inputs: the efforts applied
@@ -115,6 +117,12 @@ ForwardResult forward_dynamics(const Model& m, const State& initial, const Forwa
 std::vector<std::function<double(double)>> efforts_from_inverse(
     const Model& m, std::vector<Prescribed> prescribed, const InverseOptions& options = {});
 std::vector<std::function<double(double)>> efforts_from_samples(const InverseResult& r);
+
+// Energy balance of a run at every sample: K + V - (K + V)(t0) - W_inputs - W_loads
+// - W_constraints + D (J). Every term is integrated along the run or evaluated from the state, so
+// on a correct run it stays at the integration error; energy_balance_error is its max |.|.
+VectorXd energy_balance(const ForwardResult& r);
+double energy_balance_error(const ForwardResult& r);
 
 // Kinetic energy 1/2 q1^T M q1 (potential_energy and damping_power: mo2d/dynamics.hpp).
 double kinetic_energy(const Model& m, const VectorXd& q1);
