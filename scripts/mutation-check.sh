@@ -28,6 +28,9 @@ mutations=(
   # velocity helper, which puts a node joined to the ground at the origin
   "spring point position through the velocity helper|src/dynamics.cpp|s/return {local_position_of_point(b, q0, bp.ci/return {local_velocity_of_point(b, q0, bp.ci/"
   "centre of mass position through the velocity helper|src/build_model.cpp|s/const Vec2 d = node_position(b.nodes\[b.cj\], q0) - pi;/const Vec2 d = node_velocity(b.nodes[b.cj], q0) - pi;/"
+  # a load's work left out of the energy balance (trust issue, item 6)
+  "load work left out of the energy balance|src/forward_data.cpp|s/rates\[kLoadWork\] = load_power(d.m, q0, q1, t);/rates[kLoadWork] = 0;/"
+  "damper dissipation left out of the energy balance|src/forward_data.cpp|s/rates\[kDissipated\] = damping_power(d.m, q0, q1);/rates[kDissipated] = 0;/"
   "spring tension sign (on its first point)|src/dynamics.cpp|s/s.a.rho, T \* st.e,/s.a.rho, -T * st.e,/"
 )
 status=0
