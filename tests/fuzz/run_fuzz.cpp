@@ -4,6 +4,7 @@
 // hang (libFuzzer's -timeout), any other exception, or a result holding a non-finite value (a
 // silent wrong answer) is a bug. Built and run by scripts/fuzz.sh run [SECONDS].
 #include <algorithm>
+#include <cmath>
 #include <cstddef>
 #include <cstdint>
 #include <cstdio>
@@ -19,13 +20,25 @@ namespace {
 constexpr int kMaxSamples = 11;
 constexpr int kMaxSteps = 20'000;
 
+// Abort (a finding) if a returned result holds a non-finite value, naming the field and sample.
+void require_finite(const Eigen::MatrixXd& x, const char* field, const char* what) {
+  for (Eigen::Index i = 0; i < x.rows(); ++i)
+    for (Eigen::Index j = 0; j < x.cols(); ++j)
+      if (!std::isfinite(x(i, j))) {
+        std::fprintf(stderr, "%s returned a non-finite %s(%ld, %ld) without an error\n", what, field,
+                     static_cast<long>(i), static_cast<long>(j));
+        std::abort();
+      }
+}
+
 template <class Result>
 void require_finite(const Result& r, const char* what) {
-  const bool finite = r.time.allFinite() && r.q0.allFinite() && r.q1.allFinite() &&
-                      r.a1.allFinite() && r.efforts.allFinite() && r.reactions.allFinite();
-  if (finite) return;
-  std::fprintf(stderr, "%s returned a non-finite value without an error\n", what);
-  std::abort();
+  require_finite(r.time, "time", what);
+  require_finite(r.q0, "q0", what);
+  require_finite(r.q1, "q1", what);
+  require_finite(r.a1, "a1", what);
+  require_finite(r.efforts, "efforts", what);
+  require_finite(r.reactions, "reactions", what);
 }
 
 void run_inverse(const mo2d::Scene& scene, const mo2d::Model& model) {
