@@ -155,6 +155,30 @@ bool is_integer(double w) {
   return std::abs(w - std::round(w)) < 1e-12;
 }
 
+std::string num(double v) {
+  std::ostringstream s;
+  s.precision(4);
+  s << v;
+  return s.str();
+}
+std::string point_str(const Vec2& p) {
+  return "(" + num(p.x()) + ", " + num(p.y()) + ")";
+}
+
+// The initial positions define each body's shape (its node distances and angles), so the copies
+// of one joint node must coincide and a slider must lie on its axis: a gap is a contradiction in
+// the definition, not an approximate position that assembly could fix. `size` is the
+// mechanism's size (diagonal of the box around every node), the tolerance is relative to it.
+void check_joint_gap(double gap, double size, double tolerance, const std::string& what,
+                     const std::string& detail, const char* rule, const std::string& element) {
+  if (!(gap > tolerance * size)) return;
+  throw Error(what + ": " + detail + " " + num(gap) + " m apart (" + num(gap / size) +
+                  " of the mechanism's size " + num(size) + " m; tolerance " + num(tolerance) +
+                  "): each body's node positions define its shape, so " + rule +
+                  " in the initial configuration",
+              element);
+}
+
 }  // namespace
 
 std::vector<std::string> Model::input_labels() const {
@@ -252,11 +276,15 @@ Model build_model(const System& system, const BuildOptions& options) {
   const int E = static_cast<int>(element_label.size());
 
   // scale: size of the mechanism
+  double size = 0;  // box diagonal, unclamped: for the joint checks, dimensionless
   {
     Eigen::AlignedBox2d box;
     for (const auto& p : element_pos) box.extend(p);
-    m.scale = E > 0 ? std::max(box.diagonal().norm(), 1e-3) : 1.0;
+    size = E > 0 ? box.diagonal().norm() : 0.0;
+    m.scale = E > 0 ? std::max(size, 1e-3) : 1.0;
   }
+  if (!(options.joint_tolerance >= 0) || !std::isfinite(options.joint_tolerance))
+    throw Error("BuildOptions::joint_tolerance must be finite and >= 0", "joint_tolerance");
 
   auto resolve = [&](const std::string& prefix, const std::string& ref, const std::string& what) {
     auto it = element_of.find(prefix + ref);
@@ -422,6 +450,11 @@ Model build_model(const System& system, const BuildOptions& options) {
     const int ba = element_body[ea], bb = element_body[eb];
     if (ba < 0 && bb < 0) throw Error(what + " joins two ground nodes", j.prefix + j.def.name);
     if (ba == bb) throw Error(what + " joins two nodes of the same body", j.prefix + j.def.name);
+    check_joint_gap((element_pos[eb] - element_pos[ea]).norm(), size, options.joint_tolerance, what,
+                    "its nodes '" + element_label[ea] + "' at " + point_str(element_pos[ea]) +
+                        " and '" + element_label[eb] + "' at " + point_str(element_pos[eb]) +
+                        " are",
+                    "the two copies of a joint node must coincide", j.prefix + j.def.name);
     revolute_elements.push_back({ea, eb});
     const bool merge = mergeable(j.owner, ba, bb);
     revolute_merged.push_back(merge);
@@ -441,6 +474,19 @@ Model build_model(const System& system, const BuildOptions& options) {
         nodes_uf.parent[rb] = ra;
     }
   }
+
+  // distance of a slider (pin) from the line of its axis, in the initial configuration
+  auto check_slider_on_axis = [&](int ei, int ej, int es, const std::string& what, const char* role,
+                                  const std::string& element) {
+    const Vec2 pi = element_pos[ei], axis = (element_pos[ej] - pi).normalized();
+    const Vec2 r = element_pos[es] - pi;
+    const double gap = std::abs(axis.x() * r.y() - axis.y() * r.x());
+    check_joint_gap(gap, size, options.joint_tolerance, what,
+                    std::string("its ") + role + " '" + element_label[es] + "' at " +
+                        point_str(element_pos[es]) + " and the line of its axis '" +
+                        element_label[ei] + "' -> '" + element_label[ej] + "' are",
+                    "a slider must lie on the line of its axis", element);
+  };
 
   // ---- rotation merges (prismatic joints) ------------------------------------------------------
   // element 0 = ground rotation, 1 + b = body b
@@ -467,6 +513,7 @@ Model build_model(const System& system, const BuildOptions& options) {
       throw Error(what + ": zero-length axis (nodes '" + element_label[p.ei] + "' and '" +
                       element_label[p.ej] + "' coincide)",
                   j.prefix + j.def.name);
+    check_slider_on_axis(p.ei, p.ej, p.es, what, "slider", j.prefix + j.def.name);
     const bool has1 = p.body1 < 0 || m.bodies[p.body1].has_omega;
     const bool has2 = p.body2 < 0 || m.bodies[p.body2].has_omega;
     p.lock = has1 && has2;
@@ -502,6 +549,7 @@ Model build_model(const System& system, const BuildOptions& options) {
                   j.prefix + j.def.name);
     if ((element_pos[p.ej] - element_pos[p.ei]).norm() < 1e-9 * m.scale)
       throw Error(what + ": zero-length axis", j.prefix + j.def.name);
+    check_slider_on_axis(p.ei, p.ej, p.es, what, "pin", j.prefix + j.def.name);
     sinfo.push_back(p);
   }
 

@@ -73,6 +73,56 @@ double energy_balance_error(const ForwardResult& r) {
   return b.size() ? b.cwiseAbs().maxCoeff() : 0.0;
 }
 
+namespace {
+
+// The given velocities cannot be imposed together at this configuration. Either the configuration
+// is singular (A loses rank), or it is regular and the choice is: a given velocity is fixed by the
+// constraints (its row of a null-space basis N of A vanishes: a pendulum lying horizontal cannot
+// choose its bob's vx, which is 0), or the given ones are tied to each other. Names them, the
+// value a fixed one must have, and a set of labels that can be given instead.
+[[noreturn]] void throw_dependent_velocities(const Model& m, const InitialConditions& ic,
+                                             const Eigen::Ref<const MatrixXd>& A, const VectorXd& b,
+                                             double t0) {
+  const std::string head = "initial state of '" + m.name + "': ";
+  const std::string element = ic.velocities.empty() ? m.name : ic.velocities[0].first;
+  Eigen::CompleteOrthogonalDecomposition<MatrixXd> cod(A);
+  cod.setThreshold(1e-10);
+  if (cod.rank() < m.m1)
+    throw Error(head + "the configuration is singular (the velocity constraints lose rank)" +
+                    " at t = " + fmt(t0) + " s: no choice of initial velocities is independent",
+                element, t0);
+  const MatrixXd At = A.transpose();
+  Eigen::ColPivHouseholderQR<MatrixXd> qr(At);
+  const MatrixXd Q = qr.householderQ();
+  const MatrixXd N = Q.rightCols(m.n1 - m.m1);  // orthonormal basis of the admissible velocities
+  const VectorXd particular = cod.solve(b);
+  std::string fixed, given;
+  for (const auto& [label, value] : ic.velocities) {
+    given += (given.empty() ? "" : ", ") + label;
+    const int k = m.rate(label);
+    if (N.row(k).norm() < 1e-8)
+      fixed += (fixed.empty() ? "" : ", ") + label + " (= " + fmt(particular[k]) + ")";
+  }
+  // a set of DOF labels that can be given: the pivots of a column-pivoted QR of N^T
+  Eigen::ColPivHouseholderQR<MatrixXd> pick(N.transpose());
+  std::string instead;
+  for (int k = 0; k < m.dof; ++k)
+    instead += (k ? ", " : "") + m.rate_labels[pick.colsPermutation().indices()[k]];
+  if (!fixed.empty())
+    throw Error(head + "the constraints fix " + fixed +
+                    " at this configuration: not independent, it cannot be given as an initial "
+                    "velocity (the configuration is regular); give instead e.g. " +
+                    instead,
+                element, t0);
+  throw Error(head + "the velocities " + given +
+                  " are tied to each other by the constraints at this configuration (not "
+                  "independent; the configuration is regular); give instead e.g. " +
+                  instead,
+              element, t0);
+}
+
+}  // namespace
+
 State consistent_state(const Model& m, const InitialConditions& ic, double t0) {
   VectorXd q0 = m.q0;
   std::vector<int> fixed;
@@ -106,13 +156,7 @@ State consistent_state(const Model& m, const InitialConditions& ic, double t0) {
     rhs[m.m1 + k] = value;
   }
   detail::SmallLU lu(m.n1);
-  if (lu.compute(K) < 1e-10) {
-    std::string list;
-    for (const auto& [l, v] : ic.velocities) list += (list.empty() ? "" : ", ") + l;
-    throw Error("initial state of '" + m.name + "': the velocities " + list +
-                    " are not independent at this configuration (singular start)",
-                ic.velocities.empty() ? m.name : ic.velocities[0].first, t0);
-  }
+  if (lu.compute(K) < 1e-10) throw_dependent_velocities(m, ic, K.topRows(m.m1), b, t0);
   s.q1 = rhs;
   lu.solve_in_place(s.q1);
   return s;

@@ -175,6 +175,43 @@ void evaluate_positions(const Model& m, InverseData& d, const VectorXd& q, doubl
               vars.substr(0, vars.find(',')), t);
 }
 
+// The continuation from the last solved configuration (the model's initial one at the first
+// sample) towards the prescribed values stopped at the fraction `reached`: name where it started,
+// where it stopped and how singular the position constraints are there (a limit of the workspace:
+// the prescribed values are beyond it, e.g. a coupler angle outside the coupler's range).
+[[noreturn]] void throw_unreachable(const Model& m, InverseData& d, double t, double reached) {
+  std::string from, stop;
+  for (size_t k = 0; k < d.p_labels.size(); ++k) {
+    from += (k ? ", " : "") + d.p_labels[k] + " = " + fmt(d.s_good[k]);
+    stop += (k ? ", " : "") + d.p_labels[k] + " = " + fmt(d.q0_good[d.p_index[k]]);
+  }
+  evaluate_positions(m, d, d.q0_good, t, d.psi, d.J);
+  double ratio = 1;
+  if (d.J.size()) {
+    const Eigen::VectorXd sv = Eigen::JacobiSVD<MatrixXd>(d.J).singularValues();
+    ratio = sv[0] > 0 ? sv[sv.size() - 1] / sv[0] : 0.0;
+  }
+  std::string vars;
+  if (ratio < 1e-2) {
+    std::vector<std::string> free_labels;
+    for (int k = 0; k < m.n0; ++k)
+      if (d.colmap[k] >= 0) free_labels.push_back(m.coordinate_labels[k]);
+    vars = null_variables(d.J, free_labels);
+  }
+  throw Error("positions not found at t = " + fmt(t) + " s: the prescribed " +
+                  prescribed_values(d) + " cannot be reached from the " +
+                  (d.has_previous ? "previous sample" : "initial configuration") + " (" + from +
+                  "): the positions follow it only to " + stop + " (" + fmt(100 * reached) +
+                  " % of the way), where the position constraints with these coordinates "
+                  "prescribed are " +
+                  (ratio < 1e-2 ? "near-singular (sigma_min/sigma_max = " + fmt(ratio) +
+                                      "; undetermined: " + vars +
+                                      "): a limit of the workspace for this motion"
+                                : "regular (sigma_min/sigma_max = " + fmt(ratio) +
+                                      "): Newton did not converge beyond it"),
+              d.p_labels.empty() ? "" : d.p_labels[0], t);
+}
+
 enum class NewtonStatus { converged, singular, diverged };
 
 // Newton on psi(q0) = 0 over the free coordinates from d.q0, with backtracking. Writes
@@ -270,11 +307,9 @@ void inverse_dynamics_sample(const Model& m, InverseData& d, double t) {
       }
     }
     if (lambda < 1) {
-      if (status == NewtonStatus::singular) throw_singular_positions(m, d, t, !d.has_previous);
-      throw Error("positions not found at t = " + fmt(t) + " s (" + prescribed_values(d) +
-                      "): Newton did not converge, residual " + fmt(d.residual_position) +
-                      " (the prescribed motion leaves the workspace?)",
-                  d.p_labels.empty() ? "" : d.p_labels[0], t);
+      if (status == NewtonStatus::singular && lambda == 0)
+        throw_singular_positions(m, d, t, !d.has_previous);
+      throw_unreachable(m, d, t, lambda);
     }
   }
 

@@ -438,7 +438,10 @@ TEST(Errors, ActuatedRevoluteOnABodyWithoutRotation) {
 // =================================================================================================
 
 // Ground 0.4 m, crank 0.1 m, coupler 0.1 m, rocker 0.1 m: 0.1 + 0.1 + 0.1 < 0.4, the loop cannot
-// close whatever the crank angle.
+// close whatever the crank angle. Written with the copies of node B 0.3 m apart, which is refused
+// by default (Errors.JointNodeCopiesApartAreRefused); with the gap check widened, assembly itself
+// must fail with its own message.
+constexpr BuildOptions kGapsAllowed{.joint_tolerance = 1.0};
 TEST(Errors, FourBarThatCannotClose) {
   System s("short_fourbar");
   s.add_ground_node("A0", {0, 0}).add_ground_node("B0", {0.4, 0});
@@ -452,9 +455,10 @@ TEST(Errors, FourBarThatCannotClose) {
   s.add_revolute({.name = "rocker_pin", .node_a = "coupler.B", .node_b = "rocker.B"});
   s.add_revolute({.name = "rocker_pivot", .node_a = "ground.B0", .node_b = "rocker.O"});
   Error e("");
-  EXPECT_TRUE(ThrowsError(building(s), {"cannot be assembled"}, &e));
+  EXPECT_TRUE(ThrowsError(building(s, kGapsAllowed), {"cannot be assembled"}, &e));
   EXPECT_TRUE(NamesOneOf(e, {"crank", "coupler", "rocker"}));
   EXPECT_FALSE(e.element().empty());
+  EXPECT_TRUE(ThrowsError(building(s), {"rocker_pin", "coupler.B", "rocker.B", "0.3 m apart"}));
 }
 
 // The same four-bar with the revolute joints kept as constraint rows.
@@ -471,7 +475,8 @@ TEST(Errors, FourBarThatCannotCloseUnreduced) {
   s.add_revolute({.name = "rocker_pin", .node_a = "coupler.B", .node_b = "rocker.B"});
   s.add_revolute({.name = "rocker_pivot", .node_a = "ground.B0", .node_b = "rocker.O"});
   Error e("");
-  EXPECT_TRUE(ThrowsError(building(s, {.reduction = Reduction::none}), {"cannot be assembled"}, &e));
+  EXPECT_TRUE(ThrowsError(building(s, {.reduction = Reduction::none, .joint_tolerance = 1.0}),
+                          {"cannot be assembled"}, &e));
   EXPECT_TRUE(NamesOneOf(e, {"crank", "coupler", "rocker"}));
 }
 
@@ -490,7 +495,7 @@ TEST(Errors, AssemblyFailureElementIsTheRowNamedInTheMessage) {
   s.add_revolute({.name = "rocker_pin", .node_a = "coupler.B", .node_b = "rocker.B"});
   s.add_revolute({.name = "rocker_pivot", .node_a = "ground.B0", .node_b = "rocker.O"});
   Error e("");
-  EXPECT_TRUE(ThrowsError(building(s), {"cannot be assembled"}, &e));
+  EXPECT_TRUE(ThrowsError(building(s, kGapsAllowed), {"cannot be assembled"}, &e));
   EXPECT_TRUE(NamesItsElement(e));
 }
 

@@ -75,7 +75,7 @@ TEST(Springs, TorsionalSpringAtARevoluteJoint) {
 TEST(Springs, BadDefinitionsAreRefused) {
   auto building = [](SpringDef sp) {
     System s("bad");
-    s.add_ground_node("O", {0, 0});
+    s.add_ground_node("O", {1, 0});  // at the block's node (a gap is refused before the springs)
     s.add_body({.name = "block", .nodes = {{"P", {1, 0}}}, .mass = 1});
     s.add_revolute({.name = "pin", .node_a = "ground.O", .node_b = "block.P"});
     s.add_spring(std::move(sp));

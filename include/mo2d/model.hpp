@@ -31,6 +31,11 @@ enum class Reduction {
 struct BuildOptions {
   Reduction reduction = Reduction::flat;
   double assembly_tolerance = 1e-12;  // relative to the mechanism's size
+  // Largest gap between the two copies of a joint node (revolute: node_a and node_b; prismatic,
+  // pin-in-slot: the slider from its axis line) in the initial positions, relative to the
+  // mechanism's size (diagonal of the box around all nodes). Node positions define every body's
+  // shape, so a larger gap is refused (it would silently change a link's length).
+  double joint_tolerance = 1e-6;
   bool assemble = true;               // assemble the initial configuration and check ranks
 };
 

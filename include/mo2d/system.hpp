@@ -31,7 +31,10 @@ using Vec2 = Eigen::Vector2d;
 
 struct NodeDef {
   std::string name{};
-  Vec2 position{0, 0};  // initial (approximate) coordinates, in the System's own frame
+  // Coordinates in the initial configuration, in the System's own frame. They define the body's
+  // shape exactly; the copies of a joint node in the bodies it joins must coincide (and a slider
+  // lie on its axis line) to BuildOptions::joint_tolerance, or build_model refuses the joint.
+  Vec2 position{0, 0};
 };
 
 // Centre of mass: Example 2.6 (b) r(b*|b_i) = gamma r(b_j|b_i) + rho z x r(b_j|b_i), or a point

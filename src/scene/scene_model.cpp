@@ -121,7 +121,13 @@ State initial_state(const Scene& scene, const Model& model) {
   } catch (const SceneError&) {
     throw;
   } catch (const Error& e) {
-    throw SceneError(Location{scene.file, 0, 0}, std::string("initial state: ") + e.what());
+    Location where{scene.file, 0, 0};  // at the initial value it names, if any
+    for (const auto& use : scene.labels)
+      if (use.kind != LabelUse::Kind::input && use.label == e.element()) {
+        where = use.where;
+        break;
+      }
+    throw SceneError(where, std::string("initial state: ") + e.what());
   }
 }
 
