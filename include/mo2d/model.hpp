@@ -16,6 +16,7 @@
 #include <unordered_set>
 #include <vector>
 
+#include "mo2d/budget.hpp"
 #include "mo2d/jet.hpp"
 #include "mo2d/system.hpp"
 
@@ -32,6 +33,7 @@ struct BuildOptions {
   Reduction reduction = Reduction::flat;
   double assembly_tolerance = 1e-12;  // relative to the mechanism's size
   bool assemble = true;               // assemble the initial configuration and check ranks
+  double max_memory = kDefaultMaxMemory;  // bytes of dense matrices for that; above: refused
 };
 
 // A body-local slot: node k of a body has slots 2k (x) and 2k+1 (y); the rotation rate has 2n.
