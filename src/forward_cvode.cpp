@@ -35,11 +35,12 @@ struct CvodeUser {
 
 // The budget is checked at every right-hand side evaluation (a single output interval can take
 // arbitrarily long); when it runs out the evaluation fails unrecoverably and run_cvode rethrows.
-bool budget_ok(CvodeUser* u, double t) {
+bool budget_ok(CvodeUser* u) {
   long steps = 0;
-  double h = 0;
+  double h = 0, t = 0;
   CVodeGetNumSteps(u->mem, &steps);
   CVodeGetCurrentStep(u->mem, &h);
+  CVodeGetCurrentTime(u->mem, &t);  // the time reached (not the stage's trial time)
   try {
     u->budget->check(t, steps, h);
   } catch (...) {  // the budget's Error, or the monitor's own: not through CVODE's C frames
@@ -56,7 +57,7 @@ int cv_rhs(realtype t, N_Vector y, N_Vector ydot, void* user) {
   double* out = N_VGetArrayPointer(ydot);
   u->q0 = Eigen::Map<const VectorXd>(yd, m.n0);
   u->q1 = Eigen::Map<const VectorXd>(yd + m.n0, m.n1);
-  if (!budget_ok(u, t)) return -1;  // unrecoverable: the run stops
+  if (!budget_ok(u)) return -1;  // unrecoverable: the run stops
   try {
     u->d->accelerations(t, u->q0, u->q1, u->baumgarte);
   } catch (const Error& e) {
