@@ -72,7 +72,8 @@ struct Scene {
   std::vector<std::pair<std::string, Signal>> efforts{};  // forward: input label -> u(t)
   RunSettings run{};
   std::vector<LabelUse> labels{};
-  std::vector<std::pair<std::string, Location>> elements{};  // element name -> definition
+  // element name -> definition (run keys as "run.t0", "run.step", ...)
+  std::vector<std::pair<std::string, Location>> elements{};
 };
 
 // A parameter override "name=value" (value: an expression of the other parameters).
