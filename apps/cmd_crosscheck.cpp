@@ -7,6 +7,7 @@
 // the motion or too few compared steps is an error (status 1), never a verdict.
 #include <cstdio>
 #include <iostream>
+#include <sstream>
 
 #include "command.hpp"
 #include "mo2d/crosscheck.hpp"
@@ -53,7 +54,7 @@ Plot overlay_plot(const CrosscheckReport& r) {
 
 int crosscheck(const CrosscheckCliOptions& o) {
   const Scene scene = load_scene_with_overrides(o.scene);
-  const Model model = build_scene_model(scene);  // checks the scene's labels
+  const Model model = build_model_of(scene);  // checks the scene's labels
   if (static_cast<int>(scene.motion.size()) != model.dof)
     throw SceneError(Location{scene.file, 0, 0},
                      "the cross-check drives the prescribed motion: the model has " +
@@ -63,6 +64,17 @@ int crosscheck(const CrosscheckCliOptions& o) {
   check.step = o.step;
   check.zero_inertia_fraction = o.inertia_fraction;
   if (o.feedback_time >= 0) check.feedback_time = o.feedback_time;
+  const InverseOptions run = inverse_options(scene);
+  check_scene_options(scene, model, run);
+  // Box2D takes (t1 - t0) / step steps (counted in int by the cross-check): within the budget
+  const double steps = (run.t1 - run.t0) / o.step;
+  if (!(steps <= scene.run.max_steps)) {
+    std::ostringstream m;
+    m << "crosscheck: --step " << o.step << " s over " << run.t1 - run.t0 << " s needs " << steps
+      << " Box2D steps, more than max_steps = " << scene.run.max_steps
+      << " (run.max_steps, --max-steps): use a longer --step";
+    throw Error(m.str(), "step");
+  }
   // mo2d's reference model: the scene's, or (--reference-set) the scene with some parameters
   // changed in mo2d only, to see which modelling errors the cross-check detects
   SceneOptions ref_options = o.scene;
@@ -70,17 +82,18 @@ int crosscheck(const CrosscheckCliOptions& o) {
   const Scene ref_scene = o.reference_set.empty() ? scene : load_scene_with_overrides(ref_options);
   const CrosscheckReport r = crosscheck_inverse(
       build_scene_model(ref_scene), build_scene_model(scene, {.reduction = Reduction::none}),
-      scene.motion, inverse_options(scene), check);
+      scene.motion, run, check);
   print_crosscheck_table(std::cout, r);
   std::cout.flush();
-  const std::string csv = output_path(o.scene, scene, "crosscheck.csv");
-  write_crosscheck_csv(r, csv);
-  std::printf("  wrote %s\n", csv.c_str());
-  if (!r.effort_labels.empty()) {
-    const std::string png = output_path(o.scene, scene, "crosscheck.png");
-    write_plot(overlay_plot(r), png);
-    std::printf("  wrote %s\n", png.c_str());
+  OutputSet files;  // the CSV and the plot land together or not at all
+  {
+    OutputSet::Scope scope(files);
+    write_crosscheck_csv(r, output_path(o.scene, scene, "crosscheck.csv"));
+    if (!r.effort_labels.empty())
+      write_plot(overlay_plot(r), output_path(o.scene, scene, "crosscheck.png"));
   }
+  files.commit();
+  for (const auto& path : files.paths()) std::printf("  wrote %s\n", path.c_str());
   return r.agree ? 0 : 3;
 }
 

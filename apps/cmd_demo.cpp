@@ -8,6 +8,7 @@
 #include "command.hpp"
 #include "mo2d/mechanisms.hpp"
 #include "mo2d/mo2d.hpp"
+#include "mo2d/output.hpp"
 #include "mo2d/render.hpp"
 #include "table.hpp"
 
@@ -37,16 +38,17 @@ int demo(const DemoOptions& o) {
 
   std::printf("mo2d inverse dynamics: %s\n", model.name.c_str());
   print_inverse_table(model, r, ex.run);
-  std::filesystem::create_directories(o.out);
-  const std::string path = o.out + "/" + o.mechanism + "_inverse.csv";
-  write_inverse_csv(r, path);
-  std::printf("  wrote %s\n", path.c_str());
-  RenderJob job;
-  job.dir = o.out;
-  job.name = o.mechanism;
-  const RenderOutputs pictures = render_inverse_run(model, r, job);
-  std::printf("  wrote %s\n", pictures.filmstrip.c_str());
-  for (const auto& p : pictures.plots) std::printf("  wrote %s\n", p.c_str());
+  OutputSet files;  // the CSV and the pictures land together or not at all
+  {
+    OutputSet::Scope scope(files);
+    write_inverse_csv(r, (std::filesystem::path(o.out) / (o.mechanism + "_inverse.csv")).string());
+    RenderJob job;
+    job.dir = o.out;
+    job.name = o.mechanism;
+    render_inverse_run(model, r, job);
+  }
+  files.commit();
+  for (const auto& p : files.paths()) std::printf("  wrote %s\n", p.c_str());
   return 0;
 }
 

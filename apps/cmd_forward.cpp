@@ -1,5 +1,5 @@
 // mo2d forward SCENE [--set name=value]... [--out DIR]: forward dynamics of a scene from its
-// initial state; writes DIR/NAME_forward.csv and DIR/NAME_forward.json.
+// initial state; writes DIR/NAME_forward.csv and DIR/NAME_forward.json (both or neither).
 #include <cstdio>
 
 #include "command.hpp"
@@ -14,25 +14,24 @@ namespace {
 
 int forward(const SceneOptions& o) {
   const Scene scene = load_scene_with_overrides(o);
-  const Model model = build_scene_model(scene);
+  const Model model = build_model_of(scene);
   ForwardOptions run = forward_options(scene, model);
+  check_scene_options(scene, model, run);
   const State initial = initial_state(scene, model);
-  Progress progress(run.t0, run.t1);
+  Progress progress("forward dynamics of '" + model.name + "'", run.t0, run.t1);
   run.progress = [&progress](double t) { progress.update(t); };
+  run.monitor = [&progress](const RunProgress& p) { progress.report(p); };
   const ForwardResult r = forward_dynamics(model, initial, run);
   progress.finish();
   std::printf("mo2d forward dynamics: %s\n", model.name.c_str());
   print_forward_table(model, r, run);
-  if (scene.run.csv) {
-    const std::string path = output_path(o, scene, "forward.csv");
-    write_forward_csv(r, path);
-    std::printf("  wrote %s\n", path.c_str());
-  }
-  if (scene.run.json) {
-    const std::string path = output_path(o, scene, "forward.json");
-    write_file_atomically(path, forward_summary(scene, model, r));
-    std::printf("  wrote %s\n", path.c_str());
-  }
+  // all outputs land together or not at all (mo2d/output.hpp)
+  OutputSet out;
+  if (scene.run.csv) out.add(output_path(o, scene, "forward.csv"), forward_csv(r));
+  if (scene.run.json)
+    out.add(output_path(o, scene, "forward.json"), forward_summary(scene, model, r));
+  out.commit();
+  for (const auto& path : out.paths()) std::printf("  wrote %s\n", path.c_str());
   return 0;
 }
 

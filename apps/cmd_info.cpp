@@ -38,7 +38,9 @@ const char* kind_name(ConstraintKind k) {
 
 int info(const SceneOptions& o) {
   const Scene scene = load_scene_with_overrides(o);
-  const Model m = build_scene_model(scene);
+  const Model m = build_model_of(scene);
+  check_memory("the conditioning of '" + m.name + "' (SVD of the velocity constraint Jacobian)",
+               conditioning_memory_bytes(m), scene.run.max_memory, model_sizes(m), "max_memory");
   std::printf("scene %s\n", scene.file.c_str());
   std::cout << describe(m);
   std::printf("parameters:");

@@ -1,5 +1,5 @@
 // mo2d inverse SCENE [--set name=value]... [--out DIR]: inverse dynamics of a scene; writes
-// DIR/NAME_inverse.csv and DIR/NAME_inverse.json.
+// DIR/NAME_inverse.csv and DIR/NAME_inverse.json (both or neither).
 #include <cstdio>
 
 #include "command.hpp"
@@ -14,26 +14,27 @@ namespace {
 
 int inverse(const SceneOptions& o) {
   const Scene scene = load_scene_with_overrides(o);
-  const Model model = build_scene_model(scene);
+  const Model model = build_model_of(scene);
   if (static_cast<int>(scene.motion.size()) != model.dof)
     throw SceneError(Location{scene.file, 0, 0},
                      "inverse dynamics needs one prescribed motion per DOF: the model has " +
                          std::to_string(model.dof) + " DOF and 'motion' prescribes " +
                          std::to_string(scene.motion.size()));
-  const InverseOptions run = inverse_options(scene);
+  InverseOptions run = inverse_options(scene);
+  check_scene_options(scene, model, run);
+  Progress progress("inverse dynamics of '" + model.name + "'", run.t0, run.t1, "samples");
+  run.monitor = [&progress](const RunProgress& p) { progress.report(p); };
   const InverseResult r = inverse_dynamics(model, scene.motion, run);
+  progress.finish();
   std::printf("mo2d inverse dynamics: %s\n", model.name.c_str());
   print_inverse_table(model, r, run);
-  if (scene.run.csv) {
-    const std::string path = output_path(o, scene, "inverse.csv");
-    write_inverse_csv(r, path);
-    std::printf("  wrote %s\n", path.c_str());
-  }
-  if (scene.run.json) {
-    const std::string path = output_path(o, scene, "inverse.json");
-    write_file_atomically(path, inverse_summary(scene, model, r));
-    std::printf("  wrote %s\n", path.c_str());
-  }
+  // all outputs land together or not at all (mo2d/output.hpp)
+  OutputSet out;
+  if (scene.run.csv) out.add(output_path(o, scene, "inverse.csv"), inverse_csv(r));
+  if (scene.run.json)
+    out.add(output_path(o, scene, "inverse.json"), inverse_summary(scene, model, r));
+  out.commit();
+  for (const auto& path : out.paths()) std::printf("  wrote %s\n", path.c_str());
   return 0;
 }
 

@@ -33,7 +33,11 @@ void print_outputs(const RenderOutputs& out) {
 
 int render(const RenderCliOptions& o) {
   const Scene scene = load_scene_with_overrides(o.scene);
-  const Model model = build_scene_model(scene);
+  const Model model = build_model_of(scene);
+  // the pictures land together or not at all (with --video the frames land before ffmpeg reads
+  // them): every write_file_atomically below goes to this set
+  OutputSet files;
+  OutputSet::Scope scope(files);
   RenderJob job;
   job.dir = o.scene.out;
   job.name = scene.name;
@@ -44,16 +48,22 @@ int render(const RenderCliOptions& o) {
   const bool forward = o.solve.empty() ? scene.run.solve == Solve::forward : o.solve == "forward";
   if (forward) {
     const ForwardOptions run = forward_options(scene, model);
+    check_scene_options(scene, model, run);
     const ForwardResult r = forward_dynamics(model, initial_state(scene, model), run);
     std::printf("mo2d render: forward dynamics of %s, %d samples over [%g, %g] s\n",
                 model.name.c_str(), static_cast<int>(r.time.size()), run.t0, run.t1);
-    print_outputs(render_forward_run(model, r, job));
+    const RenderOutputs out = render_forward_run(model, r, job);
+    files.commit();
+    print_outputs(out);
   } else {
     const InverseOptions run = inverse_options(scene);
+    check_scene_options(scene, model, run);
     const InverseResult r = inverse_dynamics(model, scene.motion, run);
     std::printf("mo2d render: inverse dynamics of %s, %d samples over [%g, %g] s\n",
                 model.name.c_str(), static_cast<int>(r.time.size()), run.t0, run.t1);
-    print_outputs(render_inverse_run(model, r, job));
+    const RenderOutputs out = render_inverse_run(model, r, job);
+    files.commit();
+    print_outputs(out);
   }
   return 0;
 }

@@ -9,9 +9,12 @@
 
 #include "command.hpp"
 #include "mo2d/error.hpp"
+#include "mo2d/output.hpp"
 
 int main(int argc, char** argv) {
   using namespace mo2d::cli;
+  // SIGINT/SIGTERM/SIGHUP remove the temporaries of unfinished output files (mo2d/output.hpp)
+  mo2d::remove_temporaries_on_signal();
   CLI::App app{"mo2d: dynamics of planar mechanisms (scene files: docs/scene-format.md)", "mo2d"};
   app.require_subcommand(0, 1);
   app.fallthrough(false);

@@ -24,17 +24,53 @@ void add_scene_options(CLI::App* app, SceneOptions& o, bool with_out) {
                   "parameters); repeatable")
       ->allow_extra_args(false);  // one value per --set, so SCENE may follow
   if (with_out)
-    app->add_option("--out", o.out, "output folder (created if needed)")->capture_default_str();
+    app->add_option("--out", o.out,
+                    "output folder (created if needed); a run's files land together or not at "
+                    "all (docs/scene-format.md)")
+        ->capture_default_str();
+  app->add_option("--max-steps", o.max_steps,
+                  "step budget of a forward run (default: the scene's run.max_steps, else 1e7)")
+      ->check(CLI::PositiveNumber);
+  app->add_option("--max-seconds", o.max_seconds,
+                  "wall-time budget of the run in s (default: the scene's run.max_seconds, else "
+                  "600)")
+      ->check(CLI::PositiveNumber);
+  app->add_option("--max-memory", o.max_memory,
+                  "refuse a mechanism whose dense matrices and results need more bytes (default: "
+                  "the scene's run.max_memory, else 4e9)")
+      ->check(CLI::PositiveNumber);
 }
 
 Scene load_scene_with_overrides(const SceneOptions& o) {
   std::vector<ParameterOverride> overrides;
   for (const auto& s : o.set) overrides.push_back(parse_override(s));
-  return load_scene(o.scene, overrides);
+  Scene scene = load_scene(o.scene, overrides);
+  // a budget given on the command line replaces the scene's (whose line no longer applies)
+  auto overridden = [&](const char* key) {
+    std::erase_if(scene.elements, [&](const auto& e) { return e.first == key; });
+  };
+  if (o.max_steps) {
+    scene.run.max_steps = *o.max_steps;
+    overridden("run.max_steps");
+  }
+  if (o.max_seconds) {
+    scene.run.max_seconds = *o.max_seconds;
+    overridden("run.max_seconds");
+  }
+  if (o.max_memory) {
+    scene.run.max_memory = *o.max_memory;
+    overridden("run.max_memory");
+  }
+  return scene;
+}
+
+Model build_model_of(const Scene& s) {
+  BuildOptions b;
+  b.max_memory = s.run.max_memory;
+  return build_scene_model(s, b);
 }
 
 std::string output_path(const SceneOptions& o, const Scene& s, const std::string& suffix) {
-  std::filesystem::create_directories(o.out);
   return (std::filesystem::path(o.out) / (s.name + "_" + suffix)).string();
 }
 
@@ -42,11 +78,21 @@ bool isatty_stderr() {
   return isatty(STDERR_FILENO) == 1;
 }
 
-Progress::Progress(double t0, double t1)
-    : t0_(t0), t1_(t1), start_(wall_seconds()), enabled_(isatty_stderr()) {}
+Progress::Progress(const std::string& what, double t0, double t1, const char* unit)
+    : what_(what),
+      unit_(unit),
+      t0_(t0),
+      t1_(t1),
+      start_(wall_seconds()),
+      enabled_(isatty_stderr()) {
+  last_line_ = start_;
+}
 
 void Progress::update(double t) {
-  if (!enabled_) return;
+  if (enabled_) draw(t);
+}
+
+void Progress::draw(double t) {
   const double now = wall_seconds();
   if (now - start_ < 0.5 || now - last_draw_ < 0.1) return;
   last_draw_ = now;
@@ -57,6 +103,27 @@ void Progress::update(double t) {
   std::fprintf(stderr, "\r[%s] %3.0f%%  t = %.3g s", bar.c_str(), 100 * f, t);
   std::fflush(stderr);
   drawn_ = true;
+}
+
+void Progress::report(const RunProgress& p) {
+  if (p.stalled && !stall_said_) {
+    stall_said_ = true;
+    finish();
+    std::fprintf(stderr,
+                 "mo2d: warning: %s: the step size collapsed to %.3g s at t = %.6g s after %ld "
+                 "steps; the run may not finish (budget: --max-seconds, --max-steps)\n",
+                 what_.c_str(), p.step_size, p.t, p.steps);
+  }
+  if (enabled_) return draw(p.t);
+  const double now = wall_seconds();
+  if (now - last_line_ < kLineInterval) return;
+  last_line_ = now;
+  const double f = std::clamp((p.t - p.t0) / (p.t1 - p.t0), 0.0, 1.0);
+  std::fprintf(stderr, "mo2d: %s at t = %.6g s of [%g, %g] s (%.1f%%), %ld %s", what_.c_str(), p.t,
+               p.t0, p.t1, 100 * f, p.steps, unit_.c_str());
+  if (p.step_size > 0) std::fprintf(stderr, ", last step %.3g s", p.step_size);
+  std::fprintf(stderr, ", %.0f s elapsed\n", p.seconds);
+  std::fflush(stderr);
 }
 
 void Progress::finish() {

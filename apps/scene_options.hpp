@@ -2,9 +2,11 @@
 // Options shared by the subcommands that read a scene (SCENE, --set, --out) and the helpers
 // they share: loading with overrides, the output folder, a progress bar.
 #include <CLI/CLI.hpp>
+#include <optional>
 #include <string>
 #include <vector>
 
+#include "mo2d/output.hpp"
 #include "mo2d/scene.hpp"
 
 namespace mo2d::cli {
@@ -13,28 +15,44 @@ struct SceneOptions {
   std::string scene{};
   std::vector<std::string> set{};  // name=value
   std::string out = "out";
+  // budgets: override the scene's run.max_steps, run.max_seconds, run.max_memory
+  std::optional<int> max_steps{};
+  std::optional<double> max_seconds{}, max_memory{};
 };
 
-// SCENE positional (required) and --set; with_out: --out DIR too.
+// SCENE positional (required), --set and the budgets (--max-steps, --max-seconds, --max-memory);
+// with_out: --out DIR too.
 void add_scene_options(CLI::App* app, SceneOptions& o, bool with_out);
 Scene load_scene_with_overrides(const SceneOptions& o);
-// OUT/<scene name>_<suffix>: creates OUT when needed.
+// build_scene_model with the scene's memory limit (run.max_memory, --max-memory).
+Model build_model_of(const Scene& s);
+// OUT/<scene name>_<suffix> (the folder is created when the run's outputs are added to an
+// OutputSet, mo2d/output.hpp).
 std::string output_path(const SceneOptions& o, const Scene& s, const std::string& suffix);
 
 bool isatty_stderr();
 
-// A progress bar on stderr, drawn only when stderr is a terminal and the run has lasted more
-// than half a second; erased by finish().
+// Progress of a run on stderr. When stderr is a terminal: a bar, drawn once the run has lasted
+// more than half a second, erased by finish(). Otherwise: a line every kLineInterval seconds
+// ("mo2d: forward dynamics at t = ... of [t0, t1] s (..%), N steps, last step h s, S s"), and a
+// warning line when the step size collapses. Short runs print nothing.
 class Progress {
  public:
-  Progress(double t0, double t1);
-  void update(double t);
+  static constexpr double kLineInterval = 10;
+  Progress(const std::string& what, double t0, double t1, const char* unit = "steps");
+  ~Progress() { finish(); }
+  Progress(const Progress&) = delete;
+  Progress& operator=(const Progress&) = delete;
+  void update(double t);              // at output times
+  void report(const RunProgress& p);  // from the run's monitor (also between output times)
   void finish();
 
  private:
+  std::string what_, unit_;
   double t0_ = 0, t1_ = 1;
-  double start_ = 0, last_draw_ = 0;
-  bool enabled_ = false, drawn_ = false;
+  double start_ = 0, last_draw_ = 0, last_line_ = 0;
+  bool enabled_ = false, drawn_ = false, stall_said_ = false;
+  void draw(double t);
 };
 
 }  // namespace mo2d::cli

@@ -7,6 +7,7 @@
 #include <string>
 
 #include "mo2d/error.hpp"
+#include "mo2d/output.hpp"
 
 namespace mo2d {
 
@@ -172,6 +173,7 @@ bool encode_video(const std::string& dir, const std::string& name, double fps,
                   const std::string& path) {
   if (std::system("command -v ffmpeg > /dev/null 2>&1") != 0) return false;
   if (!(fps > 0)) throw Error("render: video frame rate must be > 0", "fps");
+  if (OutputSet* set = OutputSet::active()) set->commit();  // ffmpeg reads the frames by name
   auto quote = [](const std::string& s) {
     std::string q = "'";
     for (char c : s) q += c == '\'' ? std::string("'\\''") : std::string(1, c);

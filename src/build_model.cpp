@@ -15,6 +15,7 @@
 #include <sstream>
 
 #include "constraints.hpp"
+#include "mo2d/budget.hpp"
 #include "mo2d/error.hpp"
 #include "mo2d/kinematics.hpp"
 #include "mo2d/model.hpp"
@@ -1147,6 +1148,9 @@ Model build_model(const System& system, const BuildOptions& options) {
       m.holonomic = false;
   m.dof = m.n1 - m.m1;
   if (options.assemble) {
+    check_memory("building '" + m.name + "' (assembly and rank checks)",
+                 build_memory_bytes(m.n0, m.m0, m.n1, m.m1), options.max_memory, model_sizes(m),
+                 "max_memory");
     try {
       m.q0 = assemble(m, q0, 0.0, {}, options.assembly_tolerance);
       check_constraint_ranks(m, m.q0, 0.0);

@@ -1,35 +1,36 @@
 // CSV writing (labels in the header, 17 significant digits, atomic replace).
 #include "mo2d/csv.hpp"
 
-#include <unistd.h>
-
 #include <cerrno>
+#include <cmath>
 #include <cstdio>
 #include <cstring>
-#include <atomic>
+#include <functional>
 #include <sstream>
+#include <vector>
 
 #include "mo2d/error.hpp"
+#include "mo2d/output.hpp"
 
 namespace mo2d {
 
 void write_file_atomically(const std::string& path, const std::string& content) {
-  static std::atomic<unsigned> counter{0};
-  const std::string tmp =
-      path + ".tmp." + std::to_string(::getpid()) + "." + std::to_string(counter++);
-  std::FILE* f = std::fopen(tmp.c_str(), "wb");
-  if (!f) throw Error("cannot write '" + tmp + "': " + std::strerror(errno), path);
-  const bool ok = std::fwrite(content.data(), 1, content.size(), f) == content.size() &&
-                  std::fflush(f) == 0 && ::fsync(::fileno(f)) == 0;
-  if (std::fclose(f) != 0 || !ok) {
-    std::remove(tmp.c_str());
-    throw Error("error while writing '" + tmp + "'", path);
+  if (OutputSet* set = OutputSet::active()) return set->add(path, content);
+  const std::string tmp = detail::temporary_path(path);
+  const int slot = detail::register_temporary(tmp);  // removed if a signal ends the process
+  try {
+    detail::write_temporary(tmp, path, content);
+  } catch (...) {
+    detail::unregister_temporary(slot);
+    throw;
   }
   if (std::rename(tmp.c_str(), path.c_str()) != 0) {
     const std::string why = std::strerror(errno);
     std::remove(tmp.c_str());
+    detail::unregister_temporary(slot);
     throw Error("cannot rename '" + tmp + "' to '" + path + "': " + why, path);
   }
+  detail::unregister_temporary(slot);
 }
 
 namespace {
@@ -37,53 +38,89 @@ namespace {
 // Columns shared by inverse and forward results: t, coordinates, quasi-velocities, their
 // derivatives (label + ".dot"), efforts, reactions.
 template <class Result>
-void common_header(std::ostringstream& s, const Result& r) {
-  s << "t";
-  for (const auto& l : r.coordinate_labels) s << "," << l;
-  for (const auto& l : r.rate_labels) s << "," << l;
-  for (const auto& l : r.rate_labels) s << "," << l << ".dot";
-  for (const auto& l : r.input_labels) s << "," << l;
-  for (const auto& l : r.reaction_labels) s << "," << l;
+std::vector<std::string> common_labels(const Result& r) {
+  std::vector<std::string> l{"t"};
+  l.insert(l.end(), r.coordinate_labels.begin(), r.coordinate_labels.end());
+  l.insert(l.end(), r.rate_labels.begin(), r.rate_labels.end());
+  for (const auto& x : r.rate_labels) l.push_back(x + ".dot");
+  l.insert(l.end(), r.input_labels.begin(), r.input_labels.end());
+  l.insert(l.end(), r.reaction_labels.begin(), r.reaction_labels.end());
+  return l;
 }
+
+// One CSV row; a non-finite value is refused (never written as nan or inf).
+struct Row {
+  std::ostringstream& s;
+  const std::vector<std::string>& labels;
+  double t;
+  std::size_t col = 0;
+  void put(double v) {
+    if (!std::isfinite(v)) {
+      std::ostringstream m;
+      m << "CSV: '" << labels[col] << "' is not finite (" << v << ") at t = " << t
+        << " s: refusing to write it";
+      throw Error(m.str(), labels[col], t);
+    }
+    s << (col++ ? "," : "") << v;
+  }
+  void put_row(const MatrixXd& x, int k) {
+    for (int j = 0; j < x.cols(); ++j) put(x(k, j));
+  }
+};
 
 template <class Result>
-void common_row(std::ostringstream& s, const Result& r, int k) {
-  s << r.time[k];
-  for (int j = 0; j < r.q0.cols(); ++j) s << "," << r.q0(k, j);
-  for (int j = 0; j < r.q1.cols(); ++j) s << "," << r.q1(k, j);
-  for (int j = 0; j < r.a1.cols(); ++j) s << "," << r.a1(k, j);
-  for (int j = 0; j < r.efforts.cols(); ++j) s << "," << r.efforts(k, j);
-  for (int j = 0; j < r.reactions.cols(); ++j) s << "," << r.reactions(k, j);
+void common_row(Row& row, const Result& r, int k) {
+  row.put(r.time[k]);
+  row.put_row(r.q0, k);
+  row.put_row(r.q1, k);
+  row.put_row(r.a1, k);
+  row.put_row(r.efforts, k);
+  row.put_row(r.reactions, k);
 }
 
-}  // namespace
-
-std::string inverse_csv(const InverseResult& r) {
+std::string csv_text(const std::vector<std::string>& labels, int rows,
+                     const std::function<void(Row&, int)>& fill, const VectorXd& time) {
   std::ostringstream s;
   s.precision(17);
-  common_header(s, r);
-  s << ",residual.position,residual.velocity,residual.acceleration\n";
-  for (int k = 0; k < r.time.size(); ++k) {
-    common_row(s, r, k);
-    for (int j = 0; j < 3; ++j) s << "," << r.residuals(k, j);
+  for (std::size_t j = 0; j < labels.size(); ++j) s << (j ? "," : "") << labels[j];
+  s << "\n";
+  for (int k = 0; k < rows; ++k) {
+    Row row{s, labels, time[k]};
+    fill(row, k);
     s << "\n";
   }
   return s.str();
 }
 
+}  // namespace
+
+std::string inverse_csv(const InverseResult& r) {
+  std::vector<std::string> labels = common_labels(r);
+  for (const char* l : {"residual.position", "residual.velocity", "residual.acceleration"})
+    labels.push_back(l);
+  return csv_text(
+      labels, static_cast<int>(r.time.size()),
+      [&](Row& row, int k) {
+        common_row(row, r, k);
+        for (int j = 0; j < 3; ++j) row.put(r.residuals(k, j));
+      },
+      r.time);
+}
+
 std::string forward_csv(const ForwardResult& r) {
-  std::ostringstream s;
-  s.precision(17);
-  common_header(s, r);
-  s << ",energy.kinetic,energy.potential,work.inputs,energy.dissipated,work.loads,work.constraints";
-  s << ",residual.position,residual.velocity\n";
-  for (int k = 0; k < r.time.size(); ++k) {
-    common_row(s, r, k);
-    s << "," << r.kinetic[k] << "," << r.potential[k] << "," << r.input_work[k] << ","
-      << r.dissipated[k] << "," << r.load_work[k] << "," << r.constraint_work[k] << ","
-      << r.residuals(k, 0) << "," << r.residuals(k, 1) << "\n";
-  }
-  return s.str();
+  std::vector<std::string> labels = common_labels(r);
+  for (const char* l : {"energy.kinetic", "energy.potential", "work.inputs", "energy.dissipated",
+                        "work.loads", "work.constraints", "residual.position", "residual.velocity"})
+    labels.push_back(l);
+  return csv_text(
+      labels, static_cast<int>(r.time.size()),
+      [&](Row& row, int k) {
+        common_row(row, r, k);
+        for (double v : {r.kinetic[k], r.potential[k], r.input_work[k], r.dissipated[k],
+                         r.load_work[k], r.constraint_work[k], r.residuals(k, 0), r.residuals(k, 1)})
+          row.put(v);
+      },
+      r.time);
 }
 
 void write_forward_csv(const ForwardResult& r, const std::string& path) {

@@ -51,6 +51,40 @@ using detail::fmt;
 using detail::ForwardData;
 using detail::Recorder;
 
+void detail::check_finite_sample(const Model& m, const ForwardResult& r, int k) {
+  if (r.q0.row(k).allFinite() && r.q1.row(k).allFinite() && r.a1.row(k).allFinite() &&
+      r.efforts.row(k).allFinite() && r.reactions.row(k).allFinite() &&
+      r.residuals.row(k).allFinite() && std::isfinite(r.kinetic[k]) &&
+      std::isfinite(r.potential[k]) && std::isfinite(r.input_work[k]) &&
+      std::isfinite(r.dissipated[k]))
+    return;
+  std::string names;
+  int count = 0;
+  auto add = [&](double v, const std::string& label) {
+    if (!std::isfinite(v) && count++ < 3)
+      names += (names.empty() ? "'" : ", '") + label + "' = " + fmt(v);
+  };
+  auto scan = [&](const MatrixXd& x, const std::vector<std::string>& labels, const char* suffix) {
+    for (int j = 0; j < x.cols(); ++j) add(x(k, j), labels[j] + suffix);
+  };
+  scan(r.q0, r.coordinate_labels, "");
+  scan(r.q1, r.rate_labels, "");
+  scan(r.a1, r.rate_labels, ".dot");
+  scan(r.efforts, r.input_labels, "");
+  scan(r.reactions, r.reaction_labels, "");
+  add(r.kinetic[k], "energy.kinetic");
+  add(r.potential[k], "energy.potential");
+  add(r.input_work[k], "work.inputs");
+  add(r.dissipated[k], "energy.dissipated");
+  add(r.residuals(k, 0), "residual.position");
+  add(r.residuals(k, 1), "residual.velocity");
+  if (count == 0) return;
+  throw Error("forward dynamics of '" + m.name + "': " + names + (count > 3 ? ", ..." : "") +
+                  (count == 1 ? " is" : " are") + " not finite at t = " + fmt(r.time[k]) +
+                  " s (first non-finite result: the integration diverged or a value overflowed)",
+              names.substr(1, names.find('\'', 1) - 1), r.time[k]);
+}
+
 double kinetic_energy(const Model& m, const VectorXd& q1) {
   VectorXd local(m.n_slots), Mq(m.n1);
   body_inertia(m, q1, local);
@@ -162,23 +196,81 @@ State consistent_state(const Model& m, const InitialConditions& ic, double t0) {
   return s;
 }
 
-ForwardResult forward_dynamics(const Model& m, const State& initial, const ForwardOptions& o) {
-  if (!(o.samples >= 2) || !std::isfinite(o.t0) || !std::isfinite(o.t1) || !(o.t1 > o.t0))
-    throw Error("forward dynamics: need samples >= 2 and finite t0 < t1", "options");
-  if ((o.integrator == Integrator::rk4 || o.integrator == Integrator::baumgarte) &&
-      !(o.step > 0 && std::isfinite(o.step)))
-    throw Error("forward dynamics: the fixed step must be positive (got " + fmt(o.step) + ")",
-                "step");
+namespace {
+
+bool fixed_step(Integrator i) {
+  return i == Integrator::rk4 || i == Integrator::baumgarte;
+}
+
+// Dense matrices of the forward workspace (forward_data.hpp) and of CVODE's BDF (Jacobian and its
+// saved copy), and the recorded results: bytes, estimated from the sizes.
+double forward_memory_bytes(const Model& m, const ForwardOptions& o) {
+  const double n0 = m.n0, n1 = m.n1, m0 = m.m0, m1 = m.m1;
+  double dense =
+      8 * n1 * n1 + 2 * (n1 + m1) * (n1 + m1) + 4 * m1 * n1 + 3 * m1 * m1 + 3 * n0 * n0 + m0 * n0;
+  if (o.integrator == Integrator::cvode_bdf) dense += 2 * (n0 + n1 + 2) * (n0 + n1 + 2);
+  const double columns = n0 + 3 * n1 + m.n_inputs() + m.n_reactions() + 7;
+  return 8 * (dense + static_cast<double>(o.samples) * columns);
+}
+
+}  // namespace
+
+void check_forward_options(const Model& m, const ForwardOptions& o) {
+  const char* run = "forward dynamics";
+  if (!(o.samples >= 2))
+    throw Error("forward dynamics: samples must be >= 2 (got " + std::to_string(o.samples) + ")",
+                "samples");
+  auto order = [&] {
+    return Error("forward dynamics: need t0 < t1 (t0 = " + fmt(o.t0) + ", t1 = " + fmt(o.t1) + ")",
+                 "t1");
+  };
+  if (o.t1 < o.t0) throw order();
+  check_time_grid(run, o.t0, o.t1, o.samples);  // t1 == t0 by rounding: unresolved samples
+  if (!(o.t1 > o.t0)) throw order();
+  if (!(o.max_steps > 0))
+    throw Error("forward dynamics: max_steps must be > 0 (got " + std::to_string(o.max_steps) + ")",
+                "max_steps");
+  if (std::isnan(o.max_seconds))
+    throw Error("forward dynamics: max_seconds is not a number", "max_seconds");
+  if (fixed_step(o.integrator)) {
+    if (!(o.step > 0 && std::isfinite(o.step)))
+      throw Error("forward dynamics: the fixed step must be positive (got " + fmt(o.step) + ")",
+                  "step");
+    // the steps end on the output times: at least one per output interval
+    const double needed = std::max((o.t1 - o.t0) / o.step, static_cast<double>(o.samples - 1));
+    if (!(needed <= o.max_steps))
+      throw Error("forward dynamics: step " + fmt(o.step) + " s over [" + fmt(o.t0) + ", " +
+                      fmt(o.t1) + "] s needs " + fmt(needed) +
+                      " steps, more than max_steps = " + std::to_string(o.max_steps) +
+                      ": use a longer step (or raise max_steps, or use dopri5 or cvode_bdf)",
+                  "step");
+    const double tmax = std::max(std::abs(o.t0), std::abs(o.t1));
+    if (!(o.step >= kTimeResolution * tmax))
+      throw Error("forward dynamics: step " + fmt(o.step) +
+                      " s is below the time resolution near t = " + fmt(tmax) + " s (at least " +
+                      fmt(kTimeResolution * tmax) + " s): use a t0 closer to 0",
+                  "t0");
+  }
   if ((o.integrator == Integrator::cvode_bdf || o.integrator == Integrator::cvode_adams ||
        o.integrator == Integrator::dopri5) &&
-      !(o.rtol > 0 && o.atol > 0))
-    throw Error("forward dynamics: tolerances must be positive", "rtol");
-  if (initial.q0.size() != m.n0 || initial.q1.size() != m.n1)
-    throw Error("forward dynamics: the initial state does not match the model's variables", m.name);
+      !(o.rtol > 0 && o.atol > 0 && std::isfinite(o.rtol) && std::isfinite(o.atol)))
+    throw Error("forward dynamics: tolerances must be positive (rtol " + fmt(o.rtol) + ", atol " +
+                    fmt(o.atol) + ")",
+                "rtol");
   if (static_cast<int>(o.efforts.size()) > m.n_inputs())
     throw Error("forward dynamics: more efforts (" + std::to_string(o.efforts.size()) +
                     ") than inputs (" + std::to_string(m.n_inputs()) + ")",
                 m.name);
+  check_magnitudes(m);
+  check_memory("forward dynamics of '" + m.name + "' (" + to_string(o.integrator) + ", " +
+                   std::to_string(o.samples) + " samples)",
+               forward_memory_bytes(m, o), o.max_memory, model_sizes(m), "max_memory");
+}
+
+ForwardResult forward_dynamics(const Model& m, const State& initial, const ForwardOptions& o) {
+  check_forward_options(m, o);
+  if (initial.q0.size() != m.n0 || initial.q1.size() != m.n1)
+    throw Error("forward dynamics: the initial state does not match the model's variables", m.name);
   ForwardData d(m, o);
   ForwardResult r;
   r.coordinate_labels = m.coordinate_labels;

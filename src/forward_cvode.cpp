@@ -9,6 +9,7 @@
 
 #include <Eigen/Cholesky>
 #include <algorithm>
+#include <exception>
 #include <memory>
 #include <sstream>
 #include <vector>
@@ -17,6 +18,7 @@
 #include "mo2d/dynamics.hpp"
 #include "mo2d/error.hpp"
 #include "mo2d/kinematics.hpp"
+#include "run_budget.hpp"
 
 namespace mo2d::detail {
 namespace {
@@ -28,7 +30,27 @@ struct CvodeUser {
   std::vector<int> terms;  // the EnergyTerms carried after (q0, q1), in order
   bool baumgarte = false;
   std::string last_error;  // message of the last failed right-hand side evaluation
+  RunBudget* budget = nullptr;
+  void* mem = nullptr;               // the CVODE solver (step counts for the budget)
+  std::exception_ptr out_of_budget;  // thrown by the budget inside the right-hand side
 };
+
+// The budget is checked at every right-hand side evaluation (a single output interval can take
+// arbitrarily long); when it runs out the evaluation fails unrecoverably and run_cvode rethrows.
+bool budget_ok(CvodeUser* u) {
+  long steps = 0;
+  double h = 0, t = 0;
+  CVodeGetNumSteps(u->mem, &steps);
+  CVodeGetCurrentStep(u->mem, &h);
+  CVodeGetCurrentTime(u->mem, &t);  // the time reached (not the stage's trial time)
+  try {
+    u->budget->check(t, steps, h);
+  } catch (...) {  // the budget's Error, or the monitor's own: not through CVODE's C frames
+    u->out_of_budget = std::current_exception();
+    return false;
+  }
+  return true;
+}
 
 int cv_rhs(realtype t, N_Vector y, N_Vector ydot, void* user) {
   auto* u = static_cast<CvodeUser*>(user);
@@ -37,6 +59,7 @@ int cv_rhs(realtype t, N_Vector y, N_Vector ydot, void* user) {
   double* out = N_VGetArrayPointer(ydot);
   u->q0 = Eigen::Map<const VectorXd>(yd, m.n0);
   u->q1 = Eigen::Map<const VectorXd>(yd + m.n0, m.n1);
+  if (!budget_ok(u)) return -1;  // unrecoverable: the run stops
   try {
     u->d->accelerations(t, u->q0, u->q1, u->baumgarte);
   } catch (const Error& e) {
@@ -49,6 +72,12 @@ int cv_rhs(realtype t, N_Vector y, N_Vector ydot, void* user) {
   double rates[kEnergyTerms];
   energy_rates(*u->d, t, u->q0, u->q1, rates);
   for (size_t k = 0; k < u->terms.size(); ++k) out[m.n0 + m.n1 + k] = rates[u->terms[k]];
+  for (int k = 0; k < m.n1; ++k)
+    if (!std::isfinite(u->d->a[k])) {  // recoverable: a shorter step may stay in range
+      u->last_error =
+          "the acceleration " + m.rate_labels[k] + ".dot is not finite at t = " + fmt(t) + " s";
+      return 1;
+    }
   return 0;
 }
 
@@ -153,7 +182,17 @@ void run_cvode(const Model& m, ForwardData& d, const State& s0, const ForwardOpt
   void* mem = CVodeCreate(bdf ? CV_BDF : CV_ADAMS, ctx);
   if (!mem) throw Error("SUNDIALS CVodeCreate failed", "CVodeCreate", o.t0);
   std::unique_ptr<void, void (*)(void*)> mem_guard(mem, [](void* p) { CVodeFree(&p); });
-  CvodeUser user{&m, &d, VectorXd(m.n0), VectorXd(m.n1), terms, false, {}};
+  RunBudget budget({.run = "forward dynamics of '" + m.name + "' (" + to_string(o.integrator) + ")",
+                    .name = m.name,
+                    .t0 = o.t0,
+                    .t1 = o.t1,
+                    .max_steps = o.max_steps,
+                    .max_seconds = o.max_seconds,
+                    .monitor = o.monitor,
+                    .interval = o.monitor_interval,
+                    .hint = bdf ? "loosen rtol/atol, or try dopri5 (non-stiff mechanisms)"
+                                : "loosen rtol/atol, or try cvode_bdf (stiff mechanisms)"});
+  CvodeUser user{&m, &d, VectorXd(m.n0), VectorXd(m.n1), terms, false, {}, &budget, mem, nullptr};
   check_flag(CVodeInit(mem, cv_rhs, o.t0, y), "CVodeInit", o.t0);
   check_flag(CVodeSetUserData(mem, &user), "CVodeSetUserData", o.t0);
   check_flag(CVodeSetErrHandlerFn(mem, cv_error_handler, &d.stats), "CVodeSetErrHandlerFn", o.t0);
@@ -187,13 +226,18 @@ void run_cvode(const Model& m, ForwardData& d, const State& s0, const ForwardOpt
   for (int k = 1; k < o.samples; ++k) {
     const double t_out = o.t0 + (o.t1 - o.t0) * k / (o.samples - 1);
     check_flag(CVodeSetStopTime(mem, t_out), "CVodeSetStopTime", t);
-    int flag = CVode(mem, t_out, y, &t, CV_NORMAL);
     long taken = 0;  // max_steps bounds the whole run (CVODE's own limit is per call)
     CVodeGetNumSteps(mem, &taken);
-    if (flag >= 0 && taken > o.max_steps)
-      throw Error("forward dynamics of '" + m.name + "': more than " + std::to_string(o.max_steps) +
-                      " steps before t = " + fmt(t),
-                  m.name, t);
+    check_flag(CVodeSetMaxNumSteps(mem, std::max(1L, o.max_steps - taken)), "CVodeSetMaxNumSteps",
+               t);
+    int flag = CVode(mem, t_out, y, &t, CV_NORMAL);
+    if (user.out_of_budget) std::rethrow_exception(user.out_of_budget);
+    CVodeGetNumSteps(mem, &taken);
+    if (flag == CV_TOO_MUCH_WORK && taken >= o.max_steps) {
+      double h = 0;
+      CVodeGetLastStep(mem, &h);
+      budget.throw_exhausted(t, taken, h);
+    }
     if (flag < 0) {
       std::ostringstream s;
       s << "forward dynamics of '" << m.name << "' stopped at t = " << fmt(t)
@@ -218,6 +262,8 @@ void run_cvode(const Model& m, ForwardData& d, const State& s0, const ForwardOpt
     }
   }
   d.stats.t_end = t;
+  if (!budget.stall_warning().empty() && d.stats.warnings.size() < 20)
+    d.stats.warnings.push_back(budget.stall_warning());
   long v = 0;
   CVodeGetNumSteps(mem, &v);
   d.stats.steps = v;

@@ -392,6 +392,7 @@ void Recorder::record(double t, const VectorXd& q0, const VectorXd& q1, const do
   if (piv < d.o.singular_warning && d.stats.warnings.size() < 20)
     d.stats.warnings.push_back("near-singular configuration at t = " + fmt(t) +
                                " s (constraint Jacobian pivot ratio " + fmt(piv) + ")");
+  check_finite_sample(m, r, k);
   ++k;
 }
 

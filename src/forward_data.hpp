@@ -89,6 +89,9 @@ struct Recorder {
   void record(double t, const VectorXd& q0, const VectorXd& q1, const double* energies);
 };
 
+// Throws Error naming the first non-finite value of recorded sample k and its time (forward.cpp).
+void check_finite_sample(const Model& m, const ForwardResult& r, int k);
+
 // Integrator drivers: integrate from s0 to o.t1, recording every output time.
 void run_explicit_rk(const Model& m, ForwardData& d, const State& s0, const ForwardOptions& o,
                      Recorder& rec);

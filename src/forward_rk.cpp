@@ -13,6 +13,7 @@
 #include "forward_data.hpp"
 #include "mo2d/dynamics.hpp"
 #include "mo2d/error.hpp"
+#include "run_budget.hpp"
 
 namespace mo2d::detail {
 namespace {
@@ -72,6 +73,16 @@ class RkDriver {
         d_(d),
         o_(o),
         tab_(tab),
+        budget_({.run = "forward dynamics of '" + m.name + "' (" + to_string(o.integrator) + ")",
+                 .name = m.name,
+                 .t0 = o.t0,
+                 .t1 = o.t1,
+                 .max_steps = o.max_steps,
+                 .max_seconds = o.max_seconds,
+                 .monitor = o.monitor,
+                 .interval = o.monitor_interval,
+                 .hint = tab.embedded ? "loosen rtol/atol, or try cvode_bdf (stiff mechanisms)"
+                                      : "use a longer step"}),
         n_(m.n0 + m.n1 + kEnergyTerms),
         q0_(m.n0),
         q1_(m.n1),
@@ -100,8 +111,9 @@ class RkDriver {
         const double t_end = o_.t1;
         hh = std::min(h, t_end - t);
         if (t_end - t - hh < 1e-12 * std::max(1.0, std::abs(t_end))) hh = t_end - t;
-      } else {  // fixed step: equal steps that end on the output time
-        const int nsteps = std::max(1, static_cast<int>(std::ceil((t_out - t) / o_.step - 1e-9)));
+      } else {  // fixed step: equal steps that end on the output time (their number is kept in
+                // double: check_forward_options bounds the total by max_steps)
+        const double nsteps = std::max(1.0, std::ceil((t_out - t) / o_.step - 1e-9));
         hh = (t_out - t) / nsteps;
       }
       double used = hh;
@@ -124,12 +136,11 @@ class RkDriver {
       }
       t = t_new;
       y.swap(y_new);
-      if (++d_.stats.steps > o_.max_steps)
-        throw Error("forward dynamics of '" + m_.name + "': more than " +
-                        std::to_string(o_.max_steps) + " steps before t = " + fmt(t_out),
-                    m_.name, t);
+      budget_.check(t, ++d_.stats.steps, used);
     }
     d_.stats.t_end = t;
+    if (!budget_.stall_warning().empty() && d_.stats.warnings.size() < 20)
+      d_.stats.warnings.push_back(budget_.stall_warning());
     if (tab_.embedded && d_.stats.regularized_evaluations > 0 && o_.rtol < 5e-10 &&
         d_.stats.warnings.size() < 20)
       d_.stats.warnings.push_back(
@@ -144,6 +155,7 @@ class RkDriver {
   ForwardData& d_;
   const ForwardOptions& o_;
   Tableau tab_;
+  RunBudget budget_;
   int n_;
   bool project_ = true;
   double last_stepped_over_ = -INFINITY;

@@ -15,6 +15,7 @@
 #include "mo2d/error.hpp"
 #include "mo2d/kinematics.hpp"
 #include "mo2d/suggest.hpp"
+#include "run_budget.hpp"
 
 namespace mo2d {
 
@@ -64,7 +65,59 @@ std::string prescribed_values(const InverseData& d) {
   return s;
 }
 
+// Dense matrices of the inverse workspace (J, K and their factorizations, S, B) and the results.
+double inverse_memory_bytes(const Model& m, const InverseOptions& o) {
+  const double n0 = m.n0, n1 = m.n1, m0 = m.m0;
+  const double dense = 2 * m0 * n0 + 3 * n1 * n1 + 2 * n1 * m.dof + n1 * m.n_inputs();
+  const double columns = n0 + 2 * n1 + m.n_inputs() + m.n_reactions() + 4;
+  return 8 * (dense + static_cast<double>(o.samples) * columns);
+}
+
+// The first non-finite result of a sample (positions, velocities, accelerations, efforts,
+// reactions): an Error naming it and the time.
+void check_finite_sample(const Model& m, const InverseData& d, double t) {
+  if (d.q0.allFinite() && d.q1.allFinite() && d.a1.allFinite() && d.u.allFinite() &&
+      d.reactions.allFinite())
+    return;  // (no allocation on this path: inverse_dynamics_sample allocates nothing)
+  std::string names;
+  int count = 0;
+  auto scan = [&](const VectorXd& v, const std::vector<std::string>& labels, const char* suffix) {
+    for (int k = 0; k < v.size(); ++k)
+      if (!std::isfinite(v[k]) && count++ < 3)
+        names += (names.empty() ? "'" : ", '") + labels[k] + suffix + "' = " + fmt(v[k]);
+  };
+  scan(d.q0, m.coordinate_labels, "");
+  scan(d.q1, m.rate_labels, "");
+  scan(d.a1, m.rate_labels, ".dot");
+  scan(d.u, m.input_labels(), "");
+  scan(d.reactions, m.reaction_labels(), "");
+  if (count == 0) return;
+  throw Error("inverse dynamics of '" + m.name + "': " + names + (count > 3 ? ", ..." : "") +
+                  (count == 1 ? " is" : " are") + " not finite at t = " + fmt(t) +
+                  " s (first non-finite result: a value overflowed, or a load or motion is not "
+                  "finite there)",
+              names.substr(1, names.find('\'', 1) - 1), t);
+}
+
 }  // namespace
+
+void check_inverse_options(const Model& m, const InverseOptions& o) {
+  if (!(o.samples >= 1))
+    throw Error("inverse dynamics: samples must be >= 1 (got " + std::to_string(o.samples) + ")",
+                "samples");
+  if (o.t1 < o.t0)
+    throw Error("inverse dynamics: need t0 <= t1 (t0 = " + fmt(o.t0) + ", t1 = " + fmt(o.t1) + ")",
+                "t1");
+  check_time_grid("inverse dynamics", o.t0, o.t1, o.samples);
+  if (o.samples > 1 && !(o.t1 > o.t0))
+    throw Error("inverse dynamics: " + std::to_string(o.samples) + " samples need a duration > 0",
+                "t1");
+  if (std::isnan(o.max_seconds))
+    throw Error("inverse dynamics: max_seconds is not a number", "max_seconds");
+  check_magnitudes(m);
+  check_memory("inverse dynamics of '" + m.name + "' (" + std::to_string(o.samples) + " samples)",
+               inverse_memory_bytes(m, o), o.max_memory, model_sizes(m), "max_memory");
+}
 
 InverseData::InverseData(const Model& m, std::span<const Prescribed> prescribed,
                          const InverseOptions& o)
@@ -94,8 +147,7 @@ InverseData::InverseData(const Model& m, std::span<const Prescribed> prescribed,
                     "): a coordinate or constraint given only at velocity level (non-holonomic) "
                     "leaves positions undetermined",
                 m.name);
-  if (!(o.samples >= 1) || !std::isfinite(o.t0) || !std::isfinite(o.t1) || o.t1 < o.t0)
-    throw Error("inverse dynamics: need samples >= 1 and finite t0 <= t1", "options");
+  check_inverse_options(m, o);
   colmap.assign(m.n0, 0);
   for (const auto& p : prescribed) {
     const int k = m.coordinate(p.coordinate);
@@ -388,6 +440,7 @@ void inverse_dynamics_sample(const Model& m, InverseData& d, double t) {
   // ---- reactions: direct from multipliers, or split at eliminated joints
   detail::joint_reactions(m, d.entries, d.lambda, d.u, d.local_a, d.edge_force, d.edge_offset,
                           d.reactions);
+  check_finite_sample(m, d, t);
   d.q0_prev = d.q0;
   d.q1_prev = d.q1;
   d.a1_prev = d.a1;
@@ -412,8 +465,19 @@ InverseResult inverse_dynamics(const Model& m, std::span<const Prescribed> presc
   r.reactions.resize(N, m.n_reactions());
   r.residuals.resize(N, 3);
   const double start = detail::cpu_seconds();
+  detail::RunBudget budget({.run = "inverse dynamics of '" + m.name + "'",
+                            .name = m.name,
+                            .t0 = options.t0,
+                            .t1 = options.t1,
+                            .max_steps = 0,
+                            .max_seconds = options.max_seconds,
+                            .monitor = options.monitor,
+                            .interval = options.monitor_interval,
+                            .hint = "use fewer samples",
+                            .unit = "samples solved"});
   for (int k = 0; k < N; ++k) {
     const double t = N == 1 ? options.t0 : options.t0 + (options.t1 - options.t0) * k / (N - 1);
+    budget.check(t, k, 0);
     inverse_dynamics_sample(m, d, t);
     r.time[k] = t;
     r.q0.row(k) = d.q0.transpose();

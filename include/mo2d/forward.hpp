@@ -18,6 +18,7 @@
 #include <utility>
 #include <vector>
 
+#include "mo2d/budget.hpp"
 #include "mo2d/dynamics.hpp"
 #include "mo2d/inverse.hpp"
 #include "mo2d/model.hpp"
@@ -61,10 +62,16 @@ struct ForwardOptions {
   Integrator integrator = Integrator::cvode_bdf;
   Formulation formulation = Formulation::augmented_lagrangian;
   double rtol = 1e-8, atol = 1e-10;  // CVODE and dopri5 tolerances (atol in SI units)
-  double step = 1e-3;                // fixed step (rk4, baumgarte)
+  double step = 1e-3;  // fixed step (rk4, baumgarte); shortened so that steps end on output times
   double baumgarte_alpha = 20.0;     // 1/s, velocity-constraint feedback of the baumgarte mode
   double penalty = 0;                // augmented Lagrangian alpha (0: chosen from the mass scale)
-  int max_steps = 10'000'000;  // accepted steps over the whole run (all integrators)
+  // Budgets (mo2d/budget.hpp): accepted steps over the whole run (all integrators; a fixed-step
+  // run needing more is refused before it starts) and wall-clock seconds (<= 0 or inf: none).
+  // When one runs out, forward_dynamics throws an Error naming the time reached and the steps.
+  int max_steps = kDefaultMaxSteps;
+  double max_seconds = kDefaultMaxSeconds;
+  // Dense-matrix and result memory the run may allocate (bytes, estimated before allocating).
+  double max_memory = kDefaultMaxMemory;
   // Input efforts, one per Model::inputs entry (missing or empty = zero).
   std::vector<std::function<double(double t)>> efforts{};
   // Stop early when this function of the state changes sign (root finding between steps).
@@ -75,7 +82,17 @@ struct ForwardOptions {
   double singular_warning = 1e-4;
   // Called at every output time with that time (e.g. a progress bar); not part of the dynamics.
   std::function<void(double t)> progress{};
+  // Called about every monitor_interval seconds of wall time from inside the integration (also
+  // between output times): time reached, steps, step size, whether the step size collapsed.
+  std::function<void(const RunProgress&)> monitor{};
+  double monitor_interval = 1.0;
 };
+
+// Throws Error (element: the option's name, "t0", "t1", "samples", "step", "max_steps", ...)
+// when the options cannot give a correct run of m: a time grid double precision does not
+// resolve, a fixed step needing more than max_steps steps, sizes above max_memory, non-positive
+// tolerances or budgets. forward_dynamics calls it first.
+void check_forward_options(const Model& m, const ForwardOptions& options);
 
 struct ForwardStats {
   long steps = 0, rhs_evaluations = 0, factorizations = 0, projections = 0, error_test_failures = 0;
@@ -108,6 +125,8 @@ struct ForwardResult {
   int reaction(const std::string& reaction_label) const;
 };
 
+// Every recorded value is finite: the first non-finite one throws an Error naming the time and the
+// variable (the integration diverged or a value overflowed).
 ForwardResult forward_dynamics(const Model& m, const State& initial, const ForwardOptions& options);
 
 // Efforts replayed from inverse dynamics, one function per input: `exact` solves the inverse

@@ -13,6 +13,7 @@
 #include <string>
 #include <vector>
 
+#include "mo2d/budget.hpp"
 #include "mo2d/detail/reactions.hpp"
 #include "mo2d/detail/small_lu.hpp"
 #include "mo2d/jet.hpp"
@@ -41,7 +42,19 @@ struct InverseOptions {
   int max_newton_iterations = 30;
   double singular_pivot_ratio = 1e-10;  // min/max |pivot| of K below which a sample is singular
   ComplementMethod complement = ComplementMethod::prescribed;
+  // Budgets (mo2d/budget.hpp): wall-clock seconds of the run (<= 0 or inf: none), the memory of
+  // its dense matrices and results (bytes, estimated before allocating), a progress monitor
+  // called about every monitor_interval seconds.
+  double max_seconds = kDefaultMaxSeconds;
+  double max_memory = kDefaultMaxMemory;
+  std::function<void(const RunProgress&)> monitor{};
+  double monitor_interval = 1.0;
 };
+
+// Throws Error (element: the option's name, "t0", "t1", "samples", "max_memory", ...) when the
+// options cannot give a correct run of m: a time grid double precision does not resolve (t0 =
+// 1e17 with samples 0.01 s apart), sizes above max_memory. InverseData's constructor calls it.
+void check_inverse_options(const Model& m, const InverseOptions& options);
 
 // Workspace of one inverse-dynamics run (Pinocchio's Data): everything the per-sample loop
 // needs is allocated here once.
@@ -81,7 +94,8 @@ struct InverseData {
 };
 
 // Solve one sample at time t (no heap allocation). Throws Error (with the time) at a singular
-// configuration or when the positions cannot be solved.
+// configuration, when the positions cannot be solved, or when a result is not finite (naming the
+// variable).
 void inverse_dynamics_sample(const Model& m, InverseData& d, double t);
 
 struct InverseResult {

@@ -16,6 +16,7 @@
 #include <unordered_set>
 #include <vector>
 
+#include "mo2d/budget.hpp"
 #include "mo2d/jet.hpp"
 #include "mo2d/system.hpp"
 
@@ -37,6 +38,7 @@ struct BuildOptions {
   // shape, so a larger gap is refused (it would silently change a link's length).
   double joint_tolerance = 1e-6;
   bool assemble = true;               // assemble the initial configuration and check ranks
+  double max_memory = kDefaultMaxMemory;  // bytes of dense matrices for that; above: refused
 };
 
 // A body-local slot: node k of a body has slots 2k (x) and 2k+1 (y); the rotation rate has 2n.

@@ -46,9 +46,12 @@ struct RunSettings {
   double tolerance = 1e-12;  // inverse: position tolerance |psi|_inf relative to the model size
   Integrator integrator = Integrator::cvode_bdf;
   Formulation formulation = Formulation::augmented_lagrangian;
-  double rtol = 1e-8, atol = 1e-10;  // forward, CVODE
-  double step = 1e-3;                // forward, fixed-step integrators
-  bool csv = true, json = true;      // outputs
+  double rtol = 1e-8, atol = 1e-10;         // forward, CVODE
+  double step = 1e-3;                       // forward, fixed-step integrators
+  int max_steps = kDefaultMaxSteps;         // forward: step budget of the run
+  double max_seconds = kDefaultMaxSeconds;  // wall-clock budget of the run
+  double max_memory = kDefaultMaxMemory;    // bytes of dense matrices and results
+  bool csv = true, json = true;             // outputs
 };
 
 // A label written in the scene (prescribed coordinate, initial value, effort) with its place, so
@@ -69,7 +72,8 @@ struct Scene {
   std::vector<std::pair<std::string, Signal>> efforts{};  // forward: input label -> u(t)
   RunSettings run{};
   std::vector<LabelUse> labels{};
-  std::vector<std::pair<std::string, Location>> elements{};  // element name -> definition
+  // element name -> definition (run keys as "run.t0", "run.step", ...)
+  std::vector<std::pair<std::string, Location>> elements{};
 };
 
 // A parameter override "name=value" (value: an expression of the other parameters).
@@ -92,6 +96,11 @@ Model build_scene_model(const Scene& scene, const BuildOptions& options = {});
 InverseOptions inverse_options(const Scene& scene);
 // Efforts are ordered like Model::inputs (inputs without an effort get none: zero).
 ForwardOptions forward_options(const Scene& scene, const Model& model);
+// check_inverse_options / check_forward_options (and the model's magnitudes), a refusal reported
+// as a SceneError at the line of the run key it names (run.t0, run.step, ...; the file alone for
+// a setting left at its default or overridden on the command line).
+void check_scene_options(const Scene& scene, const Model& model, const InverseOptions& options);
+void check_scene_options(const Scene& scene, const Model& model, const ForwardOptions& options);
 // Consistent initial state of a forward run (consistent_state with the scene's initial values).
 State initial_state(const Scene& scene, const Model& model);
 

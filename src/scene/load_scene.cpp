@@ -164,18 +164,23 @@ E choice(const Reader& r, const YAML::Node& node, const std::string& what,
                    "; expected one of: " + list);
 }
 
-void read_run(const Reader& r, const YAML::Node& node, RunSettings& run) {
+void read_run(const Reader& r, const YAML::Node& node, RunSettings& run,
+              std::vector<std::pair<std::string, Location>>& elements) {
   if (!node.IsDefined() || node.IsNull()) return;
   r.check_keys(node,
                {"solve", "t0", "duration", "samples", "tolerance", "integrator", "formulation",
-                "rtol", "atol", "step", "outputs"},
+                "rtol", "atol", "step", "outputs", "max_steps", "max_seconds", "max_memory"},
                "run");
+  // where each run key is written: errors found when the run's options are checked against the
+  // model (check_scene_options) are reported there
+  for (const auto& [key, value] : r.entries(node, "run"))
+    elements.emplace_back("run." + key.Scalar(), r.at(value));
   if (node["solve"].IsDefined())
     run.solve = choice<Solve>(r, node["solve"], "run.solve",
                               {{"inverse", Solve::inverse}, {"forward", Solve::forward}});
   run.t0 = r.number_or(node, "t0", run.t0, "run");
   run.duration = r.number_or(node, "duration", run.duration, "run");
-  if (run.duration <= 0) r.fail(node["duration"], "run.duration: must be > 0 s");
+  if (!(run.duration > 0)) r.fail(node["duration"], "run.duration: must be > 0 s");
   if (node["samples"].IsDefined()) {
     run.samples = r.integer(node["samples"], "run.samples");
     if (run.samples < 2) r.fail(node["samples"], "run.samples: must be >= 2");
@@ -188,6 +193,29 @@ void read_run(const Reader& r, const YAML::Node& node, RunSettings& run) {
   positive("rtol", run.rtol);
   positive("atol", run.atol);
   positive("step", run.step);
+  {  // the time grid, with the duration as written (t0 + duration may round it away)
+    const double n = run.samples > 0 ? run.samples : 101;  // the smaller default: wider spacing
+    const double spacing = run.duration / (n - 1);
+    const double tmax = std::max(std::abs(run.t0), std::abs(run.t0 + run.duration));
+    if (!std::isfinite(run.t0 + run.duration))
+      r.fail(node[node["duration"].IsDefined() ? "duration" : "t0"],
+             "run: t0 + duration is not finite");
+    if (!(spacing >= kTimeResolution * tmax)) {
+      std::ostringstream m;
+      m << "run.t0: t0 = " << run.t0 << " s: samples " << spacing
+        << " s apart are not resolved by double precision there (doubles are "
+        << std::nextafter(tmax, INFINITY) - tmax << " s apart near t = " << tmax
+        << " s; the spacing must be at least " << kTimeResolution * tmax
+        << " s): use a t0 closer to 0, or fewer samples";
+      r.fail(node[node["t0"].IsDefined() ? "t0" : "duration"], m.str());
+    }
+  }
+  positive("max_seconds", run.max_seconds);
+  positive("max_memory", run.max_memory);
+  if (node["max_steps"].IsDefined()) {
+    run.max_steps = r.integer(node["max_steps"], "run.max_steps");
+    if (run.max_steps < 1) r.fail(node["max_steps"], "run.max_steps: must be >= 1");
+  }
   if (node["integrator"].IsDefined())
     run.integrator = choice<Integrator>(r, node["integrator"], "run.integrator",
                                         {{"cvode_bdf", Integrator::cvode_bdf},
@@ -249,8 +277,8 @@ Scene parse_scene(std::string_view yaml, const std::string& file_name,
     read_motion(r, doc["motion"], scene);
     read_initial(r, doc["initial"], scene);
     read_efforts(r, doc["efforts"], scene);
-    read_run(r, doc["run"], scene.run);
     scene.elements = std::move(info.elements);
+    read_run(r, doc["run"], scene.run, scene.elements);
   } catch (const YAML::DeepRecursion& e) {  // yaml-cpp's depth guard (its message: "bad file")
     throw SceneError(Location{file_name, e.mark.line + 1, e.mark.column + 1},
                      "YAML: nested too deeply (" + std::to_string(e.depth()) + " levels)");

@@ -95,6 +95,8 @@ InverseOptions inverse_options(const Scene& scene) {
   o.t1 = scene.run.t0 + scene.run.duration;
   o.samples = scene.run.samples > 0 ? scene.run.samples : 501;
   o.position_tolerance = scene.run.tolerance;
+  o.max_seconds = scene.run.max_seconds;
+  o.max_memory = scene.run.max_memory;
   return o;
 }
 
@@ -108,11 +110,41 @@ ForwardOptions forward_options(const Scene& scene, const Model& model) {
   o.rtol = scene.run.rtol;
   o.atol = scene.run.atol;
   o.step = scene.run.step;
+  o.max_steps = scene.run.max_steps;
+  o.max_seconds = scene.run.max_seconds;
+  o.max_memory = scene.run.max_memory;
   o.efforts.resize(model.inputs.size());
   for (const auto& [label, signal] : scene.efforts)
     for (size_t k = 0; k < model.inputs.size(); ++k)
       if (model.inputs[k].label == label) o.efforts[k] = signal;
   return o;
+}
+
+namespace {
+
+// An option's refusal at the line of its run key (the library names "t1" for the end time, which
+// the scene writes as run.duration) or of the body it names.
+template <class Check>
+void check_at_scene_lines(const Scene& scene, Check check) {
+  try {
+    check();
+  } catch (const Error& e) {
+    const std::string key = e.element() == "t1" ? "duration" : e.element();
+    for (const auto& [name, where] : scene.elements)
+      if (name == "run." + key) throw SceneError(where, "run." + key + ": " + e.what());
+    if (const Location* where = element_location(scene, e.element(), e.what()))
+      throw SceneError(*where, e.what());
+    throw SceneError(Location{scene.file, 0, 0}, e.what());
+  }
+}
+
+}  // namespace
+
+void check_scene_options(const Scene& scene, const Model& model, const InverseOptions& options) {
+  check_at_scene_lines(scene, [&] { check_inverse_options(model, options); });
+}
+void check_scene_options(const Scene& scene, const Model& model, const ForwardOptions& options) {
+  check_at_scene_lines(scene, [&] { check_forward_options(model, options); });
 }
 
 State initial_state(const Scene& scene, const Model& model) {

@@ -1,0 +1,167 @@
+// Limits of a run: time grid, memory estimates, step and wall-clock budgets (mo2d/budget.hpp).
+#include "mo2d/budget.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <sstream>
+
+#include "mo2d/error.hpp"
+#include "mo2d/model.hpp"
+#include "run_budget.hpp"
+
+namespace mo2d {
+
+namespace {
+std::string fmt(double v) {
+  std::ostringstream s;
+  s.precision(6);
+  s << v;
+  return s.str();
+}
+std::string gigabytes(double bytes) {
+  std::ostringstream s;
+  s.precision(3);
+  s << bytes / 1e9 << " GB";
+  return s.str();
+}
+}  // namespace
+
+void check_time_grid(const char* run, double t0, double t1, long long samples) {
+  if (!std::isfinite(t0))
+    throw Error(std::string(run) + ": t0 = " + fmt(t0) + " is not finite", "t0");
+  if (!std::isfinite(t1))
+    throw Error(std::string(run) + ": the end time t0 + duration = " + fmt(t1) + " is not finite",
+                "t1");
+  if (samples < 2) return;
+  const double spacing = (t1 - t0) / static_cast<double>(samples - 1);
+  const double tmax = std::max(std::abs(t0), std::abs(t1));
+  if (!(spacing >= kTimeResolution * tmax))
+    throw Error(std::string(run) + ": t0 = " + fmt(t0) + " s: " + std::to_string(samples) +
+                    " samples over [" + fmt(t0) + ", " + fmt(t1) + "] s, " + fmt(spacing) +
+                    " s apart, are not resolved by double precision there (doubles are " +
+                    fmt(std::nextafter(tmax, INFINITY) - tmax) + " s apart near t = " + fmt(tmax) +
+                    " s; the spacing must be at least " + fmt(kTimeResolution * tmax) +
+                    " s): use a t0 closer to 0, or fewer samples",
+                "t0");
+}
+
+void check_memory(const std::string& what, double bytes, double limit, const std::string& sizes,
+                  const std::string& setting) {
+  if (limit > 0 && !(bytes <= limit))
+    throw Error(what + " needs about " + gigabytes(bytes) + " of dense matrices (" + sizes +
+                    "), more than the limit of " + gigabytes(limit) + " (" + setting +
+                    "): the mechanism is too large for mo2d's dense solvers",
+                setting);
+}
+
+double build_memory_bytes(int n0, int m0, int n1, int m1) {
+  // assemble: J (m0 x n0) and its complete orthogonal decomposition (a copy and Householder
+  // coefficients); rank checks: Psi, A and the QR of their transposes
+  const double d0 = static_cast<double>(m0) * n0, d1 = static_cast<double>(m1) * n1;
+  return 8.0 * (4 * d0 + 2 * d1);
+}
+
+double conditioning_memory_bytes(const Model& m) {
+  // A (m1 x n1), the SVD's working copy and its QR preconditioner
+  return 8.0 * 3 * static_cast<double>(m.m1) * m.n1;
+}
+
+void check_magnitudes(const Model& m) {
+  const double g = std::max(1.0, std::hypot(m.gravity.x(), m.gravity.y()));
+  const double L2 = std::max(1.0, m.scale) * std::max(1.0, m.scale);
+  auto refuse = [&](const std::string& what, const std::string& name, const char* quantity,
+                    double value, const char* unit, double scale, const char* product) {
+    if (std::isfinite(value) && std::abs(value) * scale <= kMaxMagnitude) return;
+    throw Error(what + " '" + name + "': " + quantity + " " + fmt(value) + " " + unit +
+                    " is out of range: " + product + " = " + fmt(std::abs(value) * scale) +
+                    " exceeds " + fmt(kMaxMagnitude) +
+                    ", beyond what double precision carries through a run (forces and energies "
+                    "overflow to inf, efforts to NaN)",
+                name);
+  };
+  for (const auto& b : m.bodies) {
+    refuse("body", b.name, "mass", b.mass, "kg", g * L2, "m max(1, |g|) max(1, L)^2");
+    refuse("body", b.name, "inertia", b.inertia, "kg m^2", g, "I max(1, |g|)");
+  }
+  for (const auto& s : m.springs) {
+    refuse("spring", s.name, "stiffness", s.stiffness, "N/m", L2, "k max(1, L)^2");
+    refuse("spring", s.name, "damping", s.damping, "N s/m", L2, "c max(1, L)^2");
+  }
+  for (const auto& s : m.torsional_springs) {
+    refuse("torsional spring", s.name, "stiffness", s.stiffness, "N m/rad", 1, "k");
+    refuse("torsional spring", s.name, "damping", s.damping, "N m s/rad", 1, "c");
+  }
+}
+
+std::string model_sizes(const Model& m) {
+  return "n0 = " + std::to_string(m.n0) + " coordinates, n1 = " + std::to_string(m.n1) +
+         " quasi-velocities, " + std::to_string(m.m0) + " + " + std::to_string(m.m1) +
+         " constraint rows";
+}
+
+namespace detail {
+
+RunBudget::RunBudget(Settings s) : s_(std::move(s)) {
+  start_ = wall_seconds();
+  next_report_ = start_ + s_.interval;
+}
+
+double RunBudget::elapsed() const {
+  return wall_seconds() - start_;
+}
+
+bool RunBudget::out_of_time() const {
+  return s_.max_seconds > 0 && std::isfinite(s_.max_seconds) && elapsed() > s_.max_seconds;
+}
+
+void RunBudget::check(double t, long steps, double step_size) {
+  if (s_.max_steps > 0 && steps > s_.max_steps) throw_exhausted(t, steps, step_size);
+  const double now = wall_seconds();
+  if (s_.max_seconds > 0 && std::isfinite(s_.max_seconds) && now - start_ > s_.max_seconds)
+    throw_exhausted(t, steps, step_size);
+  if (now < next_report_) return;
+  next_report_ = now + s_.interval;
+  // a collapsed step size, judged at report times only (not in a run's first second nor at its
+  // first steps, where the integrator's start-up steps are small)
+  const bool collapsed =
+      steps > 10 && step_size > 0 && step_size < RunProgress::stall_ratio * (s_.t1 - s_.t0);
+  if (collapsed && !stalled_)
+    stall_warning_ = "the step size collapsed to " + fmt(step_size) + " s at t = " + fmt(t) +
+                     " s after " + std::to_string(steps) + " steps (below " +
+                     fmt(RunProgress::stall_ratio) +
+                     " of the run's duration): the run may not finish within its budget";
+  stalled_ = stalled_ || collapsed;
+  if (s_.monitor) {
+    RunProgress p;
+    p.t = t;
+    p.t0 = s_.t0;
+    p.t1 = s_.t1;
+    p.steps = steps;
+    p.step_size = step_size;
+    p.seconds = now - start_;
+    p.stalled = collapsed;
+    s_.monitor(p);
+  }
+}
+
+void RunBudget::throw_exhausted(double t, long steps, double step_size) const {
+  const double secs = elapsed();
+  const bool time_out = s_.max_seconds > 0 && secs > s_.max_seconds;
+  std::ostringstream m;
+  m << s_.run << ": ";
+  if (time_out)
+    m << "the wall-time budget of " << fmt(s_.max_seconds) << " s ran out";
+  else
+    m << "the step budget of " << s_.max_steps << " steps ran out";
+  m << " at t = " << fmt(t) << " s of [" << fmt(s_.t0) << ", " << fmt(s_.t1) << "] s, after "
+    << steps << " " << s_.unit << " in " << fmt(secs) << " s";
+  if (step_size > 0) m << " (last step " << fmt(step_size) << " s)";
+  m << "; raise "
+    << (time_out ? "max_seconds (scene run.max_seconds, mo2d --max-seconds)"
+                 : "max_steps (scene run.max_steps, mo2d --max-steps)");
+  if (!s_.hint.empty()) m << ", or " << s_.hint;
+  throw Error(m.str(), s_.name, t);
+}
+
+}  // namespace detail
+}  // namespace mo2d
