@@ -673,7 +673,15 @@ struct Builder {
     }
     if (r.chance(0.3) && !s.revolutes.empty()) {
       const auto& j = s.revolutes[r.integer(0, static_cast<int>(s.revolutes.size()) - 1)];
-      if (j.node_a.find("five") != 0 && j.node_b.find("five") != 0)  // joints of root bodies only
+      auto one_node = [&](const std::string& ref) {  // a point mass has no angle to spring
+        const std::string b = ref.substr(0, ref.find('.'));
+        for (const auto& x : s.bodies)
+          if (x.name == b) return x.nodes.size() < 2;
+        return false;
+      };
+      // joints of root bodies only, between bodies with an orientation
+      if (j.node_a.find("five") != 0 && j.node_b.find("five") != 0 && !one_node(j.node_a) &&
+          !one_node(j.node_b))
         s.torsionals.push_back({id("ts"), j.name, W * L * r.log_uniform(0.1, 10),
                                 r.chance(0.5) ? W * L * tau * r.uniform(0.05, 1) : 0.0});
     }
