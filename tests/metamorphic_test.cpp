@@ -536,9 +536,10 @@ void check_mechanism(const Mechanism& mech, Table& table) {
       return d;
     });
     // TODO(energy-branch): the forward energy balance ignores the work of point forces and
-    // torques (issue 10 item 6, fixed on the `energy` branch); widen to every mechanism after
-    // merging it.
-    if (!mech.has_external_loads())
+    // torques (issue 10 item 6, fixed on the `energy` branch): with them, 32 of 47 mechanisms
+    // (seeds 1..60) fail by up to 1.5 of the energy scale. Widen to every mechanism after merging
+    // it (MO2D_META_ALL_LOADS=1 runs them now).
+    if (!mech.has_external_loads() || std::getenv("MO2D_META_ALL_LOADS"))
       relation("forward energy balance", kForward, [&] {
         const VectorXd E = fr.kinetic + fr.potential + fr.dissipated - fr.input_work;
         double scale = 0;
