@@ -16,8 +16,12 @@ namespace {
 constexpr double kPi = std::numbers::pi;
 constexpr double kDeg = kPi / 180;
 
-Vec2 polar(double r, double a) { return {r * std::cos(a), r * std::sin(a)}; }
-Vec2 perp(const Vec2& v) { return {-v.y(), v.x()}; }
+Vec2 polar(double r, double a) {
+  return {r * std::cos(a), r * std::sin(a)};
+}
+Vec2 perp(const Vec2& v) {
+  return {-v.y(), v.x()};
+}
 Vec2 rotate(const Vec2& v, double a) {
   const double c = std::cos(a), s = std::sin(a);
   return {c * v.x() - s * v.y(), s * v.x() + c * v.y()};
@@ -25,9 +29,14 @@ Vec2 rotate(const Vec2& v, double a) {
 
 }  // namespace
 
-// ---- random numbers ------------------------------------------------------------------------------
-double Rng::uniform() { return static_cast<double>(g_() >> 11) * 0x1.0p-53; }
-double Rng::uniform(double a, double b) { return a + (b - a) * uniform(); }
+// ---- random numbers
+// ------------------------------------------------------------------------------
+double Rng::uniform() {
+  return static_cast<double>(g_() >> 11) * 0x1.0p-53;
+}
+double Rng::uniform(double a, double b) {
+  return a + (b - a) * uniform();
+}
 double Rng::log_uniform(double a, double b) {
   return std::exp(uniform(std::log(a), std::log(b)));
 }
@@ -39,11 +48,19 @@ int Rng::integer(int lo, int hi) {  // rejection sampling: no modulo bias
   while (x >= limit);
   return lo + static_cast<int>(x % n);
 }
-bool Rng::chance(double p) { return uniform() < p; }
-Vec2 Rng::direction(double lo, double hi) { return polar(1.0, uniform(lo, hi)); }
+bool Rng::chance(double p) {
+  return uniform() < p;
+}
+Vec2 Rng::direction(double lo, double hi) {
+  return polar(1.0, uniform(lo, hi));
+}
 
-double Wave::operator()(double t) const { return a0 + a1 * std::sin(omega * t + phase); }
-Vec2 VecWave::operator()(double t) const { return a0 + a1 * std::sin(omega * t + phase); }
+double Wave::operator()(double t) const {
+  return a0 + a1 * std::sin(omega * t + phase);
+}
+Vec2 VecWave::operator()(double t) const {
+  return a0 + a1 * std::sin(omega * t + phase);
+}
 Jet MotionSpec::operator()(Jet t) const {
   return s0 + amp * (sin(omega * t + phase) - std::sin(phase)) + drift * t;
 }
@@ -57,7 +74,8 @@ bool Mechanism::has_external_loads() const {
   return any(root) || std::any_of(subs.begin(), subs.end(), any);
 }
 
-// ---- to System -----------------------------------------------------------------------------------
+// ---- to System
+// -----------------------------------------------------------------------------------
 namespace {
 
 System system_of(const SystemSpec& s, const std::vector<System>& subs) {
@@ -66,18 +84,23 @@ System system_of(const SystemSpec& s, const std::vector<System>& subs) {
   for (const auto& b : s.bodies) {
     BodyDef d{.name = b.name, .nodes = b.nodes, .mass = b.mass, .inertia = b.inertia, .com = {}};
     switch (b.com.kind) {
-      case CenterOfMass::Kind::node: d.com = CenterOfMass::at_node(b.com.ni); break;
+      case CenterOfMass::Kind::node:
+        d.com = CenterOfMass::at_node(b.com.ni);
+        break;
       case CenterOfMass::Kind::nodes:
         d.com = CenterOfMass::between(b.com.ni, b.com.nj, b.com.gamma, b.com.rho);
         break;
-      case CenterOfMass::Kind::point: d.com = CenterOfMass::at_point(b.com.point); break;
+      case CenterOfMass::Kind::point:
+        d.com = CenterOfMass::at_point(b.com.point);
+        break;
     }
     out.add_body(std::move(d));
   }
   for (const auto& j : s.revolutes) out.add_revolute(j);
   for (const auto& j : s.prismatics) out.add_prismatic(j);
   for (const auto& j : s.slots) out.add_pin_in_slot(j);
-  for (const auto& c : s.coords) out.add_coordinate({.name = c.name, .rate = c.rate, .initial = 0.0});
+  for (const auto& c : s.coords)
+    out.add_coordinate({.name = c.name, .rate = c.rate, .initial = 0.0});
   for (const auto& f : s.forces) {
     const VecWave w = f.f;
     out.add_force({.name = f.name,
@@ -100,7 +123,8 @@ System system_of(const SystemSpec& s, const std::vector<System>& subs) {
                     .stiffness = sp.k,
                     .damping = sp.c});
   for (const auto& ts : s.torsionals)
-    out.add_torsional_spring({.name = ts.name, .joint = ts.joint, .stiffness = ts.k, .damping = ts.c});
+    out.add_torsional_spring(
+        {.name = ts.name, .joint = ts.joint, .stiffness = ts.k, .damping = ts.c});
   for (const auto& in : s.instances) out.add_instance(in.name, subs[in.sub], in.placement);
   if (s.gravity != Vec2(0, 0)) out.set_gravity(s.gravity);
   return out;
@@ -120,7 +144,8 @@ std::vector<Prescribed> prescribed(const Mechanism& m) {
   return out;
 }
 
-// ---- transformations -----------------------------------------------------------------------------
+// ---- transformations
+// -----------------------------------------------------------------------------
 namespace {
 
 // Apply a point map P, a vector map V (forces, gravity), the sign of pure torques and of rho
@@ -261,13 +286,17 @@ void flatten_into(const Mechanism& mech, const SystemSpec& s, const Placement& f
     fb.inertia = b.inertia;
     Vec2 c;
     switch (b.com.kind) {
-      case CenterOfMass::Kind::node: c = node_of(b, b.com.ni); break;
+      case CenterOfMass::Kind::node:
+        c = node_of(b, b.com.ni);
+        break;
       case CenterOfMass::Kind::nodes: {
         const Vec2 pi = node_of(b, b.com.ni), d = node_of(b, b.com.nj) - pi;
         c = pi + b.com.gamma * d + b.com.rho * perp(d);
         break;
       }
-      case CenterOfMass::Kind::point: c = b.com.point; break;
+      case CenterOfMass::Kind::point:
+        c = b.com.point;
+        break;
     }
     fb.com = frame.apply(c);
     index[b.name] = static_cast<int>(out.bodies.size());
@@ -295,7 +324,8 @@ void flatten_into(const Mechanism& mech, const SystemSpec& s, const Placement& f
       out.actuators.push_back(
           {prefix + j.name + ".torque", true, body_of_node(j.node_a), body_of_node(j.node_b), ""});
   for (const auto& j : s.prismatics)
-    if (j.actuated) out.actuators.push_back({prefix + j.name + ".force", false, -1, -1, prefix + j.name + ".v"});
+    if (j.actuated)
+      out.actuators.push_back({prefix + j.name + ".force", false, -1, -1, prefix + j.name + ".v"});
   for (const auto& in : s.instances)
     flatten_into(mech, mech.subs[in.sub], compose(frame, in.placement), prefix + in.name + ".",
                  out);
@@ -310,7 +340,8 @@ Flat flatten(const Mechanism& m) {
   return out;
 }
 
-// ---- conditioning --------------------------------------------------------------------------------
+// ---- conditioning
+// --------------------------------------------------------------------------------
 double prescribed_conditioning(const Model& model, const Eigen::VectorXd& q0,
                                const std::vector<std::string>& labels) {
   VectorXd psi(model.m0);
@@ -335,7 +366,8 @@ double prescribed_conditioning(const Model& model, const Eigen::VectorXd& q0,
   return sv[sv.size() - 1] / sv[0];
 }
 
-// ---- generator -----------------------------------------------------------------------------------
+// ---- generator
+// -----------------------------------------------------------------------------------
 namespace {
 
 struct Builder {
@@ -432,8 +464,9 @@ struct Builder {
     for (int k = 0; k < links; ++k) {
       const Vec2 b = a + polar(L * r.uniform(0.5, 1.5), r.uniform(-kPi, kPi));
       std::vector<NodeDef> nodes{{"A", a}, {"B", b}};
-      if (r.chance(0.3)) nodes.push_back({"C", a + r.uniform(0.2, 0.8) * (b - a) +
-                                                    r.sign() * r.uniform(0.2, 0.5) * perp(b - a)});
+      if (r.chance(0.3))
+        nodes.push_back({"C", a + r.uniform(0.2, 0.8) * (b - a) +
+                                  r.sign() * r.uniform(0.2, 0.5) * perp(b - a)});
       BodySpec body_k = body(s, nodes);
       const std::string name = body_k.name;
       s.bodies.push_back(body_k);
@@ -454,7 +487,8 @@ struct Builder {
     const Vec2 B = A + polar(L * r.uniform(0.4, 0.8), th);
     const double phi = th + kPi + r.sign() * r.uniform(40, 140) * kDeg;
     const Vec2 C = B + polar(L * r.uniform(0.8, 1.5), phi);
-    const Vec2 D = C + polar(L * r.uniform(0.6, 1.4), phi + kPi + r.sign() * r.uniform(50, 130) * kDeg);
+    const Vec2 D =
+        C + polar(L * r.uniform(0.6, 1.4), phi + kPi + r.sign() * r.uniform(50, 130) * kDeg);
     BodySpec crank = body(s, {{"A", A}, {"B", B}});
     std::vector<NodeDef> cn{{"B", B}, {"C", C}};
     Vec2 E{0, 0};
@@ -468,23 +502,28 @@ struct Builder {
     s.bodies.push_back(crank);
     s.bodies.push_back(coupler);
     s.bodies.push_back(rocker);
-    s.revolutes.push_back({.name = id("j"), .node_a = "ground." + gA, .node_b = crank.name + ".A",
-                           .actuated = true});
-    s.revolutes.push_back({.name = id("j"), .node_a = crank.name + ".B", .node_b = coupler.name + ".B"});
-    s.revolutes.push_back({.name = id("j"), .node_a = coupler.name + ".C", .node_b = rocker.name + ".C"});
-    s.revolutes.push_back({.name = id("j"), .node_a = "ground." + gD, .node_b = rocker.name + ".D"});
+    s.revolutes.push_back(
+        {.name = id("j"), .node_a = "ground." + gA, .node_b = crank.name + ".A", .actuated = true});
+    s.revolutes.push_back(
+        {.name = id("j"), .node_a = crank.name + ".B", .node_b = coupler.name + ".B"});
+    s.revolutes.push_back(
+        {.name = id("j"), .node_a = coupler.name + ".C", .node_b = rocker.name + ".C"});
+    s.revolutes.push_back(
+        {.name = id("j"), .node_a = "ground." + gD, .node_b = rocker.name + ".D"});
     add_angle_motion(angle_coordinate(s, crank.name, ""), true);
     rotating.push_back(coupler.name);
     rotating.push_back(rocker.name);
     if (six) {
       const double al = r.uniform(-kPi, kPi);
       const Vec2 F = E + polar(L * r.uniform(0.6, 1.2), al);
-      const Vec2 H = F + polar(L * r.uniform(0.6, 1.2), al + kPi + r.sign() * r.uniform(50, 130) * kDeg);
+      const Vec2 H =
+          F + polar(L * r.uniform(0.6, 1.2), al + kPi + r.sign() * r.uniform(50, 130) * kDeg);
       BodySpec d1 = body(s, {{"E", E}, {"F", F}}), d2 = body(s, {{"F", F}, {"H", H}});
       const std::string gH = ground(s, H);
       s.bodies.push_back(d1);
       s.bodies.push_back(d2);
-      s.revolutes.push_back({.name = id("j"), .node_a = coupler.name + ".E", .node_b = d1.name + ".E"});
+      s.revolutes.push_back(
+          {.name = id("j"), .node_a = coupler.name + ".E", .node_b = d1.name + ".E"});
       s.revolutes.push_back({.name = id("j"), .node_a = d1.name + ".F", .node_b = d2.name + ".F"});
       s.revolutes.push_back({.name = id("j"), .node_a = "ground." + gH, .node_b = d2.name + ".H"});
     }
@@ -505,20 +544,28 @@ struct Builder {
     BodySpec crank = body(s, {{"A", A}, {"B", B}});
     BodySpec coupler = body(s, {{"B", B}, {"P", P}});
     std::vector<NodeDef> sn{{"P", P}};
-    if (r.chance(0.5)) sn.push_back({"Q", P + polar(L * r.uniform(0.2, 0.5), r.uniform(-kPi, kPi))});
+    if (r.chance(0.5))
+      sn.push_back({"Q", P + polar(L * r.uniform(0.2, 0.5), r.uniform(-kPi, kPi))});
     BodySpec slider = body(s, sn);
     const std::string gA = ground(s, A), g1 = ground(s, S1), g2 = ground(s, S2);
     s.bodies.push_back(crank);
     s.bodies.push_back(coupler);
     s.bodies.push_back(slider);
     const bool drive_slider = r.chance(0.5);
-    s.revolutes.push_back({.name = id("j"), .node_a = "ground." + gA, .node_b = crank.name + ".A",
+    s.revolutes.push_back({.name = id("j"),
+                           .node_a = "ground." + gA,
+                           .node_b = crank.name + ".A",
                            .actuated = !drive_slider});
-    s.revolutes.push_back({.name = id("j"), .node_a = crank.name + ".B", .node_b = coupler.name + ".B"});
-    s.revolutes.push_back({.name = id("j"), .node_a = slider.name + ".P", .node_b = coupler.name + ".P"});
+    s.revolutes.push_back(
+        {.name = id("j"), .node_a = crank.name + ".B", .node_b = coupler.name + ".B"});
+    s.revolutes.push_back(
+        {.name = id("j"), .node_a = slider.name + ".P", .node_b = coupler.name + ".P"});
     const std::string jp = id("j");
-    s.prismatics.push_back({.name = jp, .axis_from = "ground." + g1, .axis_to = "ground." + g2,
-                            .slider = slider.name + ".P", .actuated = drive_slider});
+    s.prismatics.push_back({.name = jp,
+                            .axis_from = "ground." + g1,
+                            .axis_to = "ground." + g2,
+                            .slider = slider.name + ".P",
+                            .actuated = drive_slider});
     if (drive_slider) {
       MotionSpec ms{.coordinate = jp + ".q", .angle = false, .s0 = q};
       ms.amp = L * r.uniform(0.03, 0.12) * r.sign();
@@ -545,9 +592,11 @@ struct Builder {
     s.bodies.push_back(lever);
     s.bodies.push_back(crank);
     s.revolutes.push_back({.name = id("j"), .node_a = "ground." + g1, .node_b = lever.name + ".O"});
-    s.revolutes.push_back({.name = id("j"), .node_a = "ground." + g2, .node_b = crank.name + ".O",
-                           .actuated = true});
-    s.slots.push_back({.name = id("j"), .axis_from = lever.name + ".O", .axis_to = lever.name + ".B",
+    s.revolutes.push_back(
+        {.name = id("j"), .node_a = "ground." + g2, .node_b = crank.name + ".O", .actuated = true});
+    s.slots.push_back({.name = id("j"),
+                       .axis_from = lever.name + ".O",
+                       .axis_to = lever.name + ".B",
                        .pin = crank.name + ".A"});
     add_angle_motion(angle_coordinate(s, crank.name, ""), true);
     rotating.push_back(lever.name);
@@ -566,7 +615,8 @@ struct Builder {
     p.name = "p", d.name = "d";
     leg.ground.push_back({"O", O});
     leg.bodies = {p, d};
-    leg.revolutes.push_back({.name = "j1", .node_a = "ground.O", .node_b = "p.O", .actuated = true});
+    leg.revolutes.push_back(
+        {.name = "j1", .node_a = "ground.O", .node_b = "p.O", .actuated = true});
     leg.revolutes.push_back({.name = "j2", .node_a = "p.E", .node_b = "d.E", .actuated = true});
     leg.coords.push_back({"a1", {{"p.w", 1.0}}});
     leg.coords.push_back({"a2", {{"d.w", 1.0}, {"p.w", -1.0}}});
@@ -574,19 +624,25 @@ struct Builder {
     if (r.chance(0.4))
       leg.springs.push_back({"s", "d", sub.point_on(d), "ground",
                              O + polar(L * r.uniform(0.5, 1.5), r.uniform(-kPi, kPi)), 0,
-                             W / L * r.log_uniform(0.1, 10), r.chance(0.5) ? 0.0 : W / L * tau * r.uniform(0.05, 1)});
+                             W / L * r.log_uniform(0.1, 10),
+                             r.chance(0.5) ? 0.0 : W / L * tau * r.uniform(0.05, 1)});
     if (!leg.springs.empty()) {
       auto& sp = leg.springs.back();
       sp.rest = (sp.point_b - sp.point_a).norm() * r.uniform(0.5, 1.5);
     }
     if (r.chance(0.3)) leg.torsionals.push_back({"ts", "j2", W * L * r.log_uniform(0.1, 10), 0});
     if (r.chance(0.3))
-      leg.forces.push_back({"f", "d", sub.point_on(d),
-                            {W * r.uniform(0, 1) * r.direction(), W * r.uniform(0, 1) * r.direction(),
-                             r.uniform(0.3, 2.0) / tau, r.uniform(-kPi, kPi)}});
+      leg.forces.push_back(
+          {"f",
+           "d",
+           sub.point_on(d),
+           {W * r.uniform(0, 1) * r.direction(), W * r.uniform(0, 1) * r.direction(),
+            r.uniform(0.3, 2.0) / tau, r.uniform(-kPi, kPi)}});
     if (r.chance(0.3))
-      leg.torques.push_back({"t", "p", {W * L * r.uniform(-1, 1), W * L * r.uniform(-1, 1),
-                                        r.uniform(0.3, 2.0) / tau, r.uniform(-kPi, kPi)}});
+      leg.torques.push_back({"t",
+                             "p",
+                             {W * L * r.uniform(-1, 1), W * L * r.uniform(-1, 1),
+                              r.uniform(0.3, 2.0) / tau, r.uniform(-kPi, kPi)}});
     const int sub_index = static_cast<int>(mech.subs.size());
     mech.subs.push_back(leg);
     const int count = r.integer(1, 3);
@@ -594,7 +650,8 @@ struct Builder {
       const std::string name = id("leg");
       mech.root.instances.push_back(
           {name, sub_index,
-           Placement{center + polar(L * r.uniform(0, 3), r.uniform(-kPi, kPi)), r.uniform(-kPi, kPi)}});
+           Placement{center + polar(L * r.uniform(0, 3), r.uniform(-kPi, kPi)),
+                     r.uniform(-kPi, kPi)}});
       for (const char* c : {".a1", ".a2"}) {
         add_angle_motion(name + c);
       }
@@ -613,7 +670,8 @@ struct Builder {
     k.name = "k";
     crank.ground.push_back({"O", O});
     crank.bodies = {k};
-    crank.revolutes.push_back({.name = "j", .node_a = "ground.O", .node_b = "k.O", .actuated = true});
+    crank.revolutes.push_back(
+        {.name = "j", .node_a = "ground.O", .node_b = "k.O", .actuated = true});
     crank.coords.push_back({"a", {{"k.w", 1.0}}});
     const int sub_index = static_cast<int>(mech.subs.size());
     mech.subs.push_back(crank);
@@ -621,16 +679,21 @@ struct Builder {
     const Placement P2{center + polar(L * r.uniform(0.8, 1.5), r.uniform(-kPi, kPi)),
                        r.uniform(-kPi, kPi)};
     const Vec2 T1 = P1.apply(T), T2 = P2.apply(T);
-    const Vec2 J = 0.5 * (T1 + T2) + r.sign() * r.uniform(0.6, 1.2) * L * perp(T2 - T1).normalized();
+    const Vec2 J =
+        0.5 * (T1 + T2) + r.sign() * r.uniform(0.6, 1.2) * L * perp(T2 - T1).normalized();
     const std::string i1 = id("five"), i2 = id("five");
     mech.root.instances.push_back({i1, sub_index, P1});
     mech.root.instances.push_back({i2, sub_index, P2});
-    BodySpec c1 = body(mech.root, {{"T", T1}, {"J", J}}), c2 = body(mech.root, {{"T", T2}, {"J", J}});
+    BodySpec c1 = body(mech.root, {{"T", T1}, {"J", J}}),
+             c2 = body(mech.root, {{"T", T2}, {"J", J}});
     mech.root.bodies.push_back(c1);
     mech.root.bodies.push_back(c2);
-    mech.root.revolutes.push_back({.name = id("j"), .node_a = i1 + ".k.T", .node_b = c1.name + ".T"});
-    mech.root.revolutes.push_back({.name = id("j"), .node_a = i2 + ".k.T", .node_b = c2.name + ".T"});
-    mech.root.revolutes.push_back({.name = id("j"), .node_a = c1.name + ".J", .node_b = c2.name + ".J"});
+    mech.root.revolutes.push_back(
+        {.name = id("j"), .node_a = i1 + ".k.T", .node_b = c1.name + ".T"});
+    mech.root.revolutes.push_back(
+        {.name = id("j"), .node_a = i2 + ".k.T", .node_b = c2.name + ".T"});
+    mech.root.revolutes.push_back(
+        {.name = id("j"), .node_a = c1.name + ".J", .node_b = c2.name + ".J"});
     add_angle_motion(i1 + ".a");
     add_angle_motion(i2 + ".a");
     rotating.push_back(c1.name);
@@ -689,9 +752,12 @@ struct Builder {
       const int n = r.integer(1, 2);
       for (int k = 0; k < n; ++k) {
         const BodySpec& b = any_body();
-        s.forces.push_back({id("f"), b.name, point_on(b),
-                            {W * r.uniform(0, 1) * r.direction(), W * r.uniform(0, 1) * r.direction(),
-                             r.uniform(0.3, 2.0) / tau, r.uniform(-kPi, kPi)}});
+        s.forces.push_back(
+            {id("f"),
+             b.name,
+             point_on(b),
+             {W * r.uniform(0, 1) * r.direction(), W * r.uniform(0, 1) * r.direction(),
+              r.uniform(0.3, 2.0) / tau, r.uniform(-kPi, kPi)}});
       }
     }
     if (r.chance(0.4)) {
@@ -700,8 +766,10 @@ struct Builder {
         if (b.rotates()) turning.push_back(&b);
       if (!turning.empty()) {
         const BodySpec& b = *turning[r.integer(0, static_cast<int>(turning.size()) - 1)];
-        s.torques.push_back({id("t"), b.name, {W * L * r.uniform(-1, 1), W * L * r.uniform(-1, 1),
-                                               r.uniform(0.3, 2.0) / tau, r.uniform(-kPi, kPi)}});
+        s.torques.push_back({id("t"),
+                             b.name,
+                             {W * L * r.uniform(-1, 1), W * L * r.uniform(-1, 1),
+                              r.uniform(0.3, 2.0) / tau, r.uniform(-kPi, kPi)}});
       }
     }
   }
@@ -729,14 +797,30 @@ Mechanism candidate(std::uint64_t seed, int attempt) {
   for (int k = 0; k < modules; ++k) {
     const Vec2 center = base + polar(m.length * r.uniform(0, 3), r.uniform(-kPi, kPi));
     switch (r.integer(0, 7)) {
-      case 0: b.chain(m.root, center, r.integer(1, 3)); break;
-      case 1: b.fourbar(m.root, center, false); break;
-      case 2: b.fourbar(m.root, center, true); break;
-      case 3: b.slider_crank(m.root, center); break;
-      case 4: b.pin_in_slot(m.root, center); break;
-      case 5: b.legs(center); break;
-      case 6: b.fivebar(center); break;
-      default: b.chain(m.root, center, 1); break;
+      case 0:
+        b.chain(m.root, center, r.integer(1, 3));
+        break;
+      case 1:
+        b.fourbar(m.root, center, false);
+        break;
+      case 2:
+        b.fourbar(m.root, center, true);
+        break;
+      case 3:
+        b.slider_crank(m.root, center);
+        break;
+      case 4:
+        b.pin_in_slot(m.root, center);
+        break;
+      case 5:
+        b.legs(center);
+        break;
+      case 6:
+        b.fivebar(center);
+        break;
+      default:
+        b.chain(m.root, center, 1);
+        break;
     }
     b.rotating.erase(std::remove_if(b.rotating.begin(), b.rotating.end(),
                                     [&](const std::string& n) { return is_slider(m.root, n); }),

@@ -25,10 +25,10 @@ namespace mo2d::meta {
 class Rng {
  public:
   explicit Rng(std::uint64_t seed) : g_(seed) {}
-  double uniform();                      // [0, 1), 53 random bits
-  double uniform(double a, double b);    // [a, b)
+  double uniform();                        // [0, 1), 53 random bits
+  double uniform(double a, double b);      // [a, b)
   double log_uniform(double a, double b);  // log-uniform on [a, b), 0 < a < b
-  int integer(int lo, int hi);           // lo..hi inclusive
+  int integer(int lo, int hi);             // lo..hi inclusive
   bool chance(double p);
   double sign() { return chance(0.5) ? 1.0 : -1.0; }
   Vec2 direction(double angle_lo = -3.14159265358979, double angle_hi = 3.14159265358979);
@@ -118,7 +118,7 @@ struct MotionSpec {
 
 struct Mechanism {
   std::uint64_t seed = 0;
-  int attempt = 0;      // candidates rejected before this one (same seed)
+  int attempt = 0;       // candidates rejected before this one (same seed)
   std::string family{};  // modules, e.g. "fourbar+chain2+legs3"
   std::vector<SystemSpec> subs{};
   SystemSpec root{};
@@ -139,12 +139,12 @@ Mechanism translated(const Mechanism& m, Vec2 d);     // ground included
 Mechanism rotated(const Mechanism& m, double angle);  // about the origin, gravity and loads too
 Mechanism mirrored(const Mechanism& m);               // x -> -x
 Mechanism scaled(const Mechanism& m, double L, double M, double T);  // lengths, masses, time
-Mechanism reordered(const Mechanism& m, std::uint64_t seed);  // nodes, bodies, joints, loads
+Mechanism reordered(const Mechanism& m, std::uint64_t seed);         // nodes, bodies, joints, loads
 
 // Flattened, world-frame description at the initial configuration, written from the data (not
 // from mo2d's Model): used by the independent energy and power functions of the tests.
 struct FlatBody {
-  std::string name{};                     // full label, "leg1.p"
+  std::string name{};                      // full label, "leg1.p"
   std::vector<std::string> node_labels{};  // full labels, "leg1.p.E"
   std::vector<Vec2> nodes{};               // initial world positions
   double mass = 0, inertia = 0;
@@ -171,10 +171,10 @@ struct FlatTorque {
   Wave tau;
 };
 struct FlatActuator {
-  std::string input{};              // "j3.torque", "leg1.j1.torque", "j5.force"
-  bool revolute = true;             // torque u: power u (w2 - w1); else force u: power u dq/dt
-  int body1 = -1, body2 = -1;       // revolute
-  std::string rate{};               // prismatic: "j5.v"
+  std::string input{};         // "j3.torque", "leg1.j1.torque", "j5.force"
+  bool revolute = true;        // torque u: power u (w2 - w1); else force u: power u dq/dt
+  int body1 = -1, body2 = -1;  // revolute
+  std::string rate{};          // prismatic: "j5.v"
 };
 struct Flat {
   std::vector<FlatBody> bodies;
@@ -194,7 +194,7 @@ double prescribed_conditioning(const Model& model, const Eigen::VectorXd& q0,
                                const std::vector<std::string>& prescribed_labels);
 
 struct GeneratorOptions {
-  int samples = 41;            // inverse-dynamics samples on which a candidate is checked
+  int samples = 41;               // inverse-dynamics samples on which a candidate is checked
   double min_sigma_ratio = 1e-2;  // reject a candidate whose conditioning falls below this
   int max_attempts = 50;
 };
