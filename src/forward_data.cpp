@@ -54,7 +54,9 @@ ForwardData::ForwardData(const Model& model, const ForwardOptions& opt) : m(mode
     const auto d = llt_M.matrixLLT().diagonal();
     // M positive definite and not nearly singular (a massless body makes it singular)
     has_Minv = llt_M.info() == Eigen::Success && d.minCoeff() > 1e-6 * d.maxCoeff();
-    if (has_Minv) Minv = llt_M.solve(MatrixXd::Identity(m.n1, m.n1));
+    if (has_Minv)  // M^-1 = D (D M D)^-1 D
+      Minv = col_scale.asDiagonal() * llt_M.solve(MatrixXd::Identity(m.n1, m.n1)) *
+             col_scale.asDiagonal();
   }
   KKT = MatrixXd::Zero(m.n1 + m.m1, m.n1 + m.m1);
   KKT.topLeftCorner(m.n1, m.n1) = M;
@@ -471,8 +473,8 @@ void Recorder::flush_near() {
 // Constraint drift at an output time, dimensionless: each position row in the units of the
 // dimensionless coordinates (unit rows of Psi diag(pos_scale)) against the mechanism's size in
 // the same units. Projecting integrators keep it near 1e-13; beyond o.drift_tolerance the run has
-// left the constraint manifold (and possibly its branch): reported once, with the time and the
-// worst constraint row.
+// left the constraint manifold (and possibly its branch): an error naming the time and the worst
+// constraint row (a warning, once, for the integrators that do not project).
 void Recorder::check_drift(double t, const VectorXd& q0) {
   if (m.m0 == 0 || drift_reported) return;
   position_jacobian(m, q0, t, d.psi, d.Psi);
@@ -490,15 +492,22 @@ void Recorder::check_drift(double t, const VectorXd& q0) {
   d.stats.max_drift = std::max(d.stats.max_drift, worst);
   if (!(worst > d.o.drift_tolerance)) return;
   drift_reported = true;
+  // without projection the drift grows with the integrator's tolerance: a warning (such a run
+  // stops at a singular configuration, check_unprojected); with projection it is a failure
+  if (!d.projects()) {
+    if (d.stats.warnings.size() < 20)
+      d.stats.warnings.push_back(
+          "the constraints drifted by " + fmt(worst) + " of the mechanism's size at t = " + fmt(t) +
+          " s (worst row '" + m.position_row_labels[row] + "', residual " + fmt(d.psi[row]) +
+          "): " + to_string(d.o.integrator) +
+          " does not project on the constraints (cvode_bdf, dopri5 and rk4 do)");
+    return;
+  }
   const std::string msg = "forward dynamics of '" + m.name + "': the constraints drifted by " +
                           fmt(worst) + " of the mechanism's size at t = " + fmt(t) +
                           " s (worst row '" + m.position_row_labels[row] + "', residual " +
                           fmt(d.psi[row]) + "; drift tolerance " + fmt(d.o.drift_tolerance) +
                           "): the motion has left the constraint manifold";
-  if (d.o.integrator == Integrator::cvode_adams || d.o.integrator == Integrator::baumgarte)
-    throw Error(msg + " (" + to_string(d.o.integrator) +
-                    " does not project on the constraints; use cvode_bdf, dopri5 or rk4, which do)",
-                m.position_row_labels[row], t);
   throw Error(msg, m.position_row_labels[row], t);
 }
 

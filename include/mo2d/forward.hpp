@@ -30,6 +30,7 @@ using Eigen::VectorXd;
 enum class Integrator {
   cvode_bdf,    // SUNDIALS CVODE, BDF (orders 1-5), Newton + dense LU, projection each step
   cvode_adams,  // SUNDIALS CVODE, Adams-Moulton (orders 1-12), fixed-point iteration, no projection
+                // (CVODE projects only BDF): stops at a near-singular configuration
   rk4,          // classical Runge-Kutta, fixed step, projection each step
   dopri5,       // Dormand-Prince 5(4), adaptive step (rtol, atol), projection each step
   baumgarte,    // Mo2DPack-compatible: RK4, velocity constraints stabilized by Baumgarte, no
@@ -79,7 +80,9 @@ struct ForwardOptions {
   double singular_warning = 1e-4;
   // Largest position-constraint drift at an output time, relative to the mechanism's size (each
   // row in dimensionless form): beyond it the run stops with an error naming the time and the
-  // worst row (the state has left the constraint manifold, and may have left its branch).
+  // worst row (the state has left the constraint manifold, and may have left its branch); for
+  // cvode_adams and baumgarte, which do not project, a warning (their drift follows the
+  // tolerance or step).
   double drift_tolerance = 1e-6;
   // Called at every output time with that time (e.g. a progress bar); not part of the dynamics.
   std::function<void(double t)> progress{};
