@@ -48,6 +48,7 @@ std::string inverse_summary(const Scene& s, const Model& m, const InverseResult&
   j["max_residuals"] = {{"position", any ? r.residuals.col(0).maxCoeff() : 0.0},
                         {"velocity", any ? r.residuals.col(1).maxCoeff() : 0.0},
                         {"acceleration", any ? r.residuals.col(2).maxCoeff() : 0.0}};
+  j["warnings"] = r.warnings;
   j["cpu_seconds"] = r.cpu_seconds;
   return j.dump(2) + "\n";
 }

@@ -21,6 +21,7 @@ void print_inverse_table(const Model& model, const InverseResult& r, const Inver
   std::printf("  max constraint residual: position %.2e m, velocity %.2e, acceleration %.2e\n",
               r.residuals.col(0).maxCoeff(), r.residuals.col(1).maxCoeff(),
               r.residuals.col(2).maxCoeff());
+  for (const auto& w : r.warnings) std::printf("  warning: %s\n", w.c_str());
   std::printf("  CPU time %.3f ms (%.2f us per sample)\n", 1e3 * r.cpu_seconds,
               1e6 * r.cpu_seconds / static_cast<double>(r.time.size()));
 }

@@ -302,6 +302,7 @@ ForwardResult forward_dynamics(const Model& m, const State& initial, const Forwa
       detail::run_cvode(m, d, s0, o, rec);
       break;
   }
+  rec.finish();
   d.stats.cpu_seconds = detail::cpu_seconds() - start;
   // trim to the recorded samples (an event may stop early)
   const int used = rec.k;

@@ -43,13 +43,20 @@ ForwardData::ForwardData(const Model& model, const ForwardOptions& opt) : m(mode
   G1 = MatrixXd::Zero(m.m1, m.m1);
   lu_G1 = detail::SmallLU(m.m1);
   row_scale = VectorXd::Ones(m.m1);
+  pos_row_scale = VectorXd::Ones(m.m0);
+  col_scale = column_scaling(m);
+  pos_scale = col_scale.head(m.n0);
+  eval_min_q0 = m.q0;
   AMinv = MatrixXd::Zero(m.m1, m.n1);
   {
-    Eigen::LLT<MatrixXd> llt_M(M);
+    // on the dimensionless D M D (D = col_scale): the test does not depend on units or size
+    Eigen::LLT<MatrixXd> llt_M(col_scale.asDiagonal() * M * col_scale.asDiagonal());
     const auto d = llt_M.matrixLLT().diagonal();
     // M positive definite and not nearly singular (a massless body makes it singular)
     has_Minv = llt_M.info() == Eigen::Success && d.minCoeff() > 1e-6 * d.maxCoeff();
-    if (has_Minv) Minv = llt_M.solve(MatrixXd::Identity(m.n1, m.n1));
+    if (has_Minv)  // M^-1 = D (D M D)^-1 D
+      Minv = col_scale.asDiagonal() * llt_M.solve(MatrixXd::Identity(m.n1, m.n1)) *
+             col_scale.asDiagonal();
   }
   KKT = MatrixXd::Zero(m.n1 + m.m1, m.n1 + m.m1);
   KKT.topLeftCorner(m.n1, m.n1) = M;
@@ -60,12 +67,15 @@ ForwardData::ForwardData(const Model& model, const ForwardOptions& opt) : m(mode
   S = MatrixXd::Zero(m.n1, m.dof);
   CtMC = MatrixXd::Zero(m.dof, m.dof);
   red = VectorXd::Zero(m.dof);
-  // penalty: large against the mass, as in Bayo & Garcia de Jalon's augmented Lagrangian
-  const double mscale = std::max(M.diagonal().maxCoeff(), 1e-12);
+  // penalty: large against the mass, as in Bayo & Garcia de Jalon's augmented Lagrangian, on the
+  // dimensionless rows (alpha N^2) against the largest entry of the dimensionless D M D
+  const VectorXd dmd = M.diagonal().cwiseProduct(col_scale.cwiseAbs2());
+  const double mscale = dmd.maxCoeff() > 0 ? dmd.maxCoeff() : 1.0;
   alpha = o.penalty > 0 ? o.penalty : 1e7 * mscale;
-  // position metric: the mass of the node coordinates, kept definite for massless nodes
+  // position metric: the mass of the node coordinates, kept definite for massless nodes (and the
+  // extra coordinates, which carry no mass) by 1e-6 of the mass scale in dimensionless terms
   M0 = M.topLeftCorner(m.n0, m.n0);
-  M0.diagonal().array() += 1e-6 * mscale;
+  for (int k = 0; k < m.n0; ++k) M0(k, k) += 1e-6 * mscale / (pos_scale[k] * pos_scale[k]);
   W0 = MatrixXd::Zero(m.n0, m.n0);
   dq0 = VectorXd::Zero(m.n0);
   dq1 = VectorXd::Zero(m.n1);
@@ -111,10 +121,7 @@ double ForwardData::solve_schur() {
     a.noalias() = Minv * rhs;
     return 1.0;
   }
-  for (int i = 0; i < m.m1; ++i) {
-    const double nr = A.row(i).norm();
-    row_scale[i] = nr > 0 ? 1.0 / nr : 1.0;
-  }
+  row_scale_of(A, col_scale, row_scale);
   An = row_scale.asDiagonal() * A;
   AMinv.noalias() = An * Minv;
   G1.noalias() = AMinv * An.transpose();
@@ -134,23 +141,30 @@ double ForwardData::solve_schur() {
   return ratio;
 }
 
-// (sigma_min / sigma_max)^2 of A with unit rows, estimated by the pivot ratio of the LU of
-// A_n A_n^T: independent of the units of the constraint rows.
+// out[i] = 1 / |row i of J diag(d)| (1 for a zero row).
+void ForwardData::row_scale_of(const MatrixXd& J, const VectorXd& d, VectorXd& out) const {
+  for (Eigen::Index i = 0; i < J.rows(); ++i) {
+    double s = 0;
+    for (Eigen::Index j = 0; j < J.cols(); ++j) s += (J(i, j) * d[j]) * (J(i, j) * d[j]);
+    out[i] = s > 0 ? 1.0 / std::sqrt(s) : 1.0;
+  }
+}
+
+// (sigma_min / sigma_max)^2 of the dimensionless N A diag(d), estimated by the pivot ratio of the
+// LU of its Gram matrix: independent of the units of the rows and variables and of the size.
 double ForwardData::row_conditioning() {
   if (m.m1 == 0) return 1.0;
-  An = A;
-  for (int i = 0; i < m.m1; ++i) {
-    const double nr = An.row(i).norm();
-    if (nr > 0) An.row(i) /= nr;
-  }
+  row_scale_of(A, col_scale, row_scale);
+  An.noalias() = row_scale.asDiagonal() * A * col_scale.asDiagonal();
   G1.noalias() = An * An.transpose();
   return lu_G1.compute(G1);
 }
 
-// M + alpha A^T A (the augmented-Lagrangian and projection matrices).
+// M + alpha A^T N^2 A (the augmented-Lagrangian matrix; N = row_scale, set by the caller).
 const MatrixXd& ForwardData::H_of(double penalty) {
   H = M;
-  H.noalias() += penalty * A.transpose() * A;
+  An.noalias() = row_scale.asDiagonal() * A;
+  H.noalias() += penalty * An.transpose() * An;
   return H;
 }
 
@@ -180,14 +194,16 @@ void ForwardData::accelerations(double t, const VectorXd& q0, const VectorXd& q1
       // a Runge-Kutta step) makes c inconsistent in the direction A is losing, and the direct
       // solution blows up as 1/sigma_min: there the augmented Lagrangian takes over.
       if (has_Minv) {
-        if (solve_schur() >= kDirectAccept) break;
-      } else if (row_conditioning() >= kDirectAccept && solve_kkt() > 0 && kkt_x.allFinite()) {
+        if (note_conditioning(t, q0, solve_schur()) >= kDirectAccept) break;
+      } else if (note_conditioning(t, q0, row_conditioning()) >= kDirectAccept && solve_kkt() > 0 &&
+                 kkt_x.allFinite()) {
         a = kkt_x.head(m.n1);
         lambda = kkt_x.tail(m.m1);
         break;
       }
       // Near a singular configuration: the augmented Lagrangian (M + alpha A^T A) stays positive
       // definite and regularizes the degenerate direction.
+      row_scale_of(A, col_scale, row_scale);
       llt_H.compute(H_of(alpha));
       ++stats.factorizations;
       if (llt_H.info() != Eigen::Success)
@@ -197,8 +213,8 @@ void ForwardData::accelerations(double t, const VectorXd& q0, const VectorXd& q1
                         fmt(t) + " (a body without mass or inertia?)",
                     m.name, t);
       // Iterate in residual form, warm-started from the last accepted multipliers (reset if not
-      // finite): r1 = f + B u - M a - A^T lambda, r2 = c - A a; H da = r1 + alpha A^T r2,
-      // a += da, lambda -= alpha (c - A a). Written on the true residuals, the iteration also
+      // finite): r1 = f + B u - M a - A^T lambda, r2 = c - A a; H da = r1 + alpha A^T N^2 r2,
+      // a += da, lambda -= alpha N^2 (c - A a). Written on the true residuals, the iteration also
       // refines away the rounding of the (ill-conditioned) H solves. It stops when converged or
       // when the residual no longer halves: there the penalty regularizes the constraint instead
       // of enforcing it with unbounded multipliers, and the result is flagged as inaccurate
@@ -207,9 +223,15 @@ void ForwardData::accelerations(double t, const VectorXd& q0, const VectorXd& q1
       a.setZero();
       double prev = INFINITY;
       int it = 0;
-      // scale of r2: |c|, plus a constant term so that a state at rest (c = 0) is judged on the
-      // absolute residual
-      const double c_floor = 0.1 * (1 + A.cwiseAbs().maxCoeff());
+      // Both residuals are measured in dimensionless terms: the generalized forces as D r1 against
+      // D (f + B u) and D A^T lambda, the constraint rows as N r2 against N c plus a tenth of the
+      // accelerations D^-1 a (so that a state at rest, c = 0, is judged on the size of a).
+      auto inf_scaled = [](const VectorXd& v, const VectorXd& sc, bool divide) {
+        double x = 0;
+        for (Eigen::Index k = 0; k < v.size(); ++k)
+          x = std::max(x, std::abs(divide ? v[k] / sc[k] : v[k] * sc[k]));
+        return x;
+      };
       for (; it < 40; ++it) {
         tmp0 = rhs;
         tmp0.noalias() -= M * a;
@@ -217,17 +239,19 @@ void ForwardData::accelerations(double t, const VectorXd& q0, const VectorXd& q1
         tmp0 -= tmp1;  // r1
         ap.head(m.m1) = c;
         ap.head(m.m1).noalias() -= A * a;  // r2
-        const double s1 = rhs.lpNorm<Eigen::Infinity>() + tmp1.lpNorm<Eigen::Infinity>() + 1e-300;
-        const double s2 = c.lpNorm<Eigen::Infinity>() + c_floor;
-        const double e = std::max(tmp0.lpNorm<Eigen::Infinity>() / s1,
-                                  ap.head(m.m1).lpNorm<Eigen::Infinity>() / s2);
+        const double s1 = inf_scaled(rhs, col_scale, false) + inf_scaled(tmp1, col_scale, false);
+        const double s2 = inf_scaled(c, row_scale, false) + 0.1 * inf_scaled(a, col_scale, true);
+        const double e = std::max(inf_scaled(tmp0, col_scale, false) / (s1 + 1e-300),
+                                  inf_scaled(ap.head(m.m1), row_scale, false) / (s2 + 1e-300));
         if (it > 0 && (e <= 1e-14 || e > 0.5 * prev)) break;
         prev = e;
+        ap.head(m.m1).array() *= row_scale.array().square();
         tmp0.noalias() += alpha * A.transpose() * ap.head(m.m1);
         llt_H.solveInPlace(tmp0);
         a += tmp0;
         ap.head(m.m1) = c;
         ap.head(m.m1).noalias() -= A * a;
+        ap.head(m.m1).array() *= row_scale.array().square();
         lambda.noalias() -= alpha * ap.head(m.m1);
       }
       stats.solver_iterations += it;
@@ -238,6 +262,7 @@ void ForwardData::accelerations(double t, const VectorXd& q0, const VectorXd& q1
       break;
     }
     case Formulation::lagrange: {
+      if (!projects()) note_conditioning(t, q0, row_conditioning());
       const double r = solve_kkt();
       if (r < 1e-14)
         throw Error("forward dynamics of '" + m.name + "': [M A^T; A 0] is singular at t = " +
@@ -249,6 +274,7 @@ void ForwardData::accelerations(double t, const VectorXd& q0, const VectorXd& q1
       break;
     }
     case Formulation::null_space: {
+      if (!projects()) note_conditioning(t, q0, row_conditioning());
       if (independent.empty()) choose_independent(q0, t);
       auto build = [&] {
         K.setZero();
@@ -301,12 +327,24 @@ void ForwardData::accelerations(double t, const VectorXd& q0, const VectorXd& q1
                 m.name, t);
 }
 
+double ForwardData::note_conditioning(double t, const VectorXd& q0, double ratio) {
+  if (ratio < eval_min_ratio) {
+    eval_min_ratio = ratio;
+    eval_min_t = t;
+    eval_min_q0 = q0;
+  }
+  return ratio;
+}
+
 void ForwardData::project(double t, VectorXd& q0, VectorXd& q1, double tol_pos, double tol_vel) {
   ++stats.projections;
   if (m.m0 > 0) {
     for (int it = 0; it < 6; ++it) {
       position_jacobian(m, q0, t, psi, Psi);
       if (psi.lpNorm<Eigen::Infinity>() <= tol_pos) break;
+      row_scale_of(Psi, pos_scale, pos_row_scale);
+      Psi = pos_row_scale.asDiagonal() * Psi;  // dimensionless rows
+      psi.array() *= pos_row_scale.array();
       W0 = M0;
       W0.noalias() += alpha * Psi.transpose() * Psi;
       llt_G0.compute(W0);
@@ -323,11 +361,11 @@ void ForwardData::project(double t, VectorXd& q0, VectorXd& q1, double tol_pos, 
     r1 -= b;
     if (r1.lpNorm<Eigen::Infinity>() <= tol_vel) break;
     if (!factored) {
-      H = M;
-      H.noalias() += alpha * A.transpose() * A;
-      llt_G1.compute(H);
+      row_scale_of(A, col_scale, row_scale);
+      llt_G1.compute(H_of(alpha));
       factored = true;
     }
+    r1.array() *= row_scale.array().square();
     dq1.noalias() = -alpha * A.transpose() * r1;
     llt_G1.solveInPlace(dq1);
     q1 += dq1;
@@ -366,7 +404,30 @@ void energy_rates(ForwardData& d, double t, const VectorXd& q0, const VectorXd& 
   rates[kDissipated] = damping_power(d.m, q0, q1);
 }
 
+// An integrator that does not project (cvode_adams, baumgarte) cannot hold the constraints
+// through a singular configuration: the drift in the direction the Jacobian loses is not
+// corrected and the run can leave its branch without any other sign (the double four-bar on
+// cvode_adams: tips 1 m off, residuals 1e-7). So such a run stops with an error as soon as one of
+// its evaluations comes near one (below o.singular_warning).
+void Recorder::check_unprojected() {
+  if (d.projects() || m.m1 == 0 || !(d.eval_min_ratio < d.o.singular_warning)) return;
+  velocity_jacobian(m, d.eval_min_q0, d.eval_min_t, d.A, d.b);
+  const SingularDirection s =
+      singular_direction(d.A, d.col_scale, m.velocity_row_labels, m.rate_labels);
+  throw Error("forward dynamics of '" + m.name + "': " + to_string(d.o.integrator) +
+                  " does not project on the constraints and cannot pass the near-singular "
+                  "configuration at t = " +
+                  fmt(d.eval_min_t) + " s (dimensionless pivot ratio " + fmt(d.eval_min_ratio) +
+                  "; nearly dependent constraints " + s.rows + ", nearly undetermined motion of " +
+                  s.variables +
+                  ") without the risk of leaving its branch: use cvode_bdf, dopri5 or rk4, "
+                  "which project",
+              s.variables.empty() ? m.name : s.variables.substr(1, s.variables.find('\'', 1) - 1),
+              d.eval_min_t);
+}
+
 void Recorder::record(double t, const VectorXd& q0, const VectorXd& q1, const double* energies) {
+  check_unprojected();
   if (d.o.progress) d.o.progress(t);
   r.time[k] = t;
   r.q0.row(k) = q0.transpose();
@@ -387,13 +448,83 @@ void Recorder::record(double t, const VectorXd& q0, const VectorXd& q1, const do
   r.residuals(k, 0) = m.m0 ? psi.lpNorm<Eigen::Infinity>() : 0.0;
   velocity_jacobian(m, q0, t, d.A, d.b);
   r.residuals(k, 1) = m.m1 ? (d.A * q1 - d.b).lpNorm<Eigen::Infinity>() : 0.0;
+  check_drift(t, q0);
   const double piv = d.pivot_indicator(t, q0);
   d.stats.min_pivot_ratio = std::min(d.stats.min_pivot_ratio, piv);
-  if (piv < d.o.singular_warning && d.stats.warnings.size() < 20)
-    d.stats.warnings.push_back("near-singular configuration at t = " + fmt(t) +
-                               " s (constraint Jacobian pivot ratio " + fmt(piv) + ")");
+  if (piv < d.o.singular_warning) {
+    if (!near) near_first = t;
+    near_last = t;
+    if (!near || piv < near_min) {
+      near_min = piv;
+      near_t = t;
+      const SingularDirection s =
+          singular_direction(d.A, d.col_scale, m.velocity_row_labels, m.rate_labels);
+      near_what = "; nearly dependent constraints " + s.rows + ", nearly undetermined motion of " +
+                  s.variables;
+    }
+    near = true;
+  } else {
+    flush_near();
+  }
   check_finite_sample(m, r, k);
   ++k;
+}
+
+void Recorder::flush_near() {
+  if (!near) return;
+  near = false;
+  std::string span;
+  if (near_last > near_first)
+    span = ", output times " + fmt(near_first) + " to " + fmt(near_last) + " s";
+  if (d.stats.warnings.size() < 20)
+    d.stats.warnings.push_back("near-singular configuration at t = " + fmt(near_t) +
+                               " s (dimensionless pivot ratio " + fmt(near_min) + span + near_what +
+                               ")");
+}
+
+// Constraint drift at an output time, dimensionless: each position row in the units of the
+// dimensionless coordinates (unit rows of Psi diag(pos_scale)) against the mechanism's size in
+// the same units. Projecting integrators keep it near 1e-13; beyond o.drift_tolerance the run has
+// left the constraint manifold (and possibly its branch): an error naming the time and the worst
+// constraint row (a warning, once, for the integrators that do not project).
+void Recorder::check_drift(double t, const VectorXd& q0) {
+  if (m.m0 == 0 || drift_reported) return;
+  position_jacobian(m, q0, t, d.psi, d.Psi);
+  d.row_scale_of(d.Psi, d.pos_scale, d.pos_row_scale);
+  double size = 0;
+  for (int j = 0; j < m.n0; ++j)
+    if (m.rate_refs[j].body >= 0) size = std::max(size, m.scale / d.pos_scale[j]);
+  if (!(size > 0)) size = m.scale;
+  double worst = 0;
+  int row = 0;
+  for (int i = 0; i < m.m0; ++i) {
+    const double e = std::abs(d.psi[i]) * d.pos_row_scale[i] / size;
+    if (!(e <= worst)) worst = e, row = i;
+  }
+  d.stats.max_drift = std::max(d.stats.max_drift, worst);
+  if (!(worst > d.o.drift_tolerance)) return;
+  drift_reported = true;
+  // without projection the drift grows with the integrator's tolerance: a warning (such a run
+  // stops at a singular configuration, check_unprojected); with projection it is a failure
+  if (!d.projects()) {
+    if (d.stats.warnings.size() < 20)
+      d.stats.warnings.push_back(
+          "the constraints drifted by " + fmt(worst) + " of the mechanism's size at t = " + fmt(t) +
+          " s (worst row '" + m.position_row_labels[row] + "', residual " + fmt(d.psi[row]) +
+          "): " + to_string(d.o.integrator) +
+          " does not project on the constraints (cvode_bdf, dopri5 and rk4 do)");
+    return;
+  }
+  const std::string msg = "forward dynamics of '" + m.name + "': the constraints drifted by " +
+                          fmt(worst) + " of the mechanism's size at t = " + fmt(t) +
+                          " s (worst row '" + m.position_row_labels[row] + "', residual " +
+                          fmt(d.psi[row]) + "; drift tolerance " + fmt(d.o.drift_tolerance) +
+                          "): the motion has left the constraint manifold";
+  throw Error(msg, m.position_row_labels[row], t);
+}
+
+void Recorder::finish() {
+  flush_near();
 }
 
 }  // namespace mo2d::detail

@@ -2,6 +2,7 @@
 // Internal to the forward-dynamics implementation: the workspace of one run (accelerations,
 // projection, reactions), the output recorder, and the integrator drivers (one file each).
 #include <Eigen/Cholesky>
+#include <cmath>
 #include <string>
 #include <vector>
 
@@ -38,11 +39,16 @@ struct ForwardData {
   bool accel_ok = true;       // the last accelerations are accurate (not regularized away)
   VectorXd kkt_x;
   MatrixXd An, G1, Minv, AMinv;
-  VectorXd row_scale;
+  // Dimensionless rows and columns (see column_scaling in mo2d/kinematics.hpp): col_scale d (n1)
+  // and pos_scale (its first n0 entries) are fixed by the model; row_scale N (m1) makes the rows of
+  // A diag(d) unit at each evaluation (row_scale_of). Every conditioning test, the penalty
+  // (alpha N^2 in place of alpha) and the convergence tests are made on N A diag(d), so they do
+  // not depend on units or on the size of the mechanism.
+  VectorXd row_scale, col_scale, pos_scale, pos_row_scale;
   bool has_Minv = false;  // M positive definite: direct solves by the Schur complement
   Eigen::LLT<MatrixXd> llt_G;
   detail::SmallLU lu_G1;
-  // The direct solve is used where row_conditioning() >= kDirectAccept (sigma ratio >= 1e-4);
+  // The direct solve is used where row_conditioning() >= kDirectAccept (sigma ratio >= 0.1);
   // the augmented-Lagrangian result is accurate below the relative residual kAlfAccept.
   static constexpr double kDirectAccept = 1e-2, kKktAccept = 1e-14, kAlfAccept = 1e-8;
 
@@ -53,15 +59,26 @@ struct ForwardData {
   double solve_kkt();
   double solve_schur();
   double row_conditioning();
+  void row_scale_of(const MatrixXd& J, const VectorXd& d, VectorXd& out) const;
   const MatrixXd& H_of(double penalty);
 
   void choose_independent(const VectorXd& q0, double t);
+
+  // the integrator projects the state on the constraint manifolds (all but cvode_adams, baumgarte)
+  bool projects() const {
+    return o.integrator != Integrator::cvode_adams && o.integrator != Integrator::baumgarte;
+  }
+  // smallest conditioning seen in the evaluations (row_conditioning or the Schur ratio) and where
+  double eval_min_ratio = INFINITY, eval_min_t = 0;
+  VectorXd eval_min_q0;
+  double note_conditioning(double t, const VectorXd& q0, double ratio);
 
   // a1 = accelerations at (t, q0, q1). With baumgarte, A a = c - alpha (A q1 - b).
   void accelerations(double t, const VectorXd& q0, const VectorXd& q1, bool baumgarte);
 
   // Project q0 on psi = 0 and q1 on A q1 = b, mass-orthogonally and regularized by the
-  // augmented-Lagrangian penalty (Bayo, Cuadrado): (W + alpha J^T J) dx = -alpha J^T r, iterated.
+  // augmented-Lagrangian penalty (Bayo, Cuadrado): (W + alpha J^T N^2 J) dx = -alpha J^T N^2 r,
+  // iterated (N: the dimensionless row scaling).
   // In regular directions each iteration divides the residual by ~alpha sigma^2 / m (~1e7); in a
   // direction where the Jacobian loses rank (sigma -> 0) the correction vanishes instead of
   // blowing up as 1/sigma, so a state near a singular position is not thrown onto another branch.
@@ -85,8 +102,18 @@ struct Recorder {
   ForwardResult& r;
   ForwardData& d;
   int k = 0;
+  // a run of output times below o.singular_warning, reported once at its smallest pivot ratio
+  bool near = false;
+  double near_min = 1, near_t = 0, near_first = 0, near_last = 0;
+  std::string near_what;
+  bool drift_reported = false;
   // energies: the kEnergyTerms integrated terms at t
   void record(double t, const VectorXd& q0, const VectorXd& q1, const double* energies);
+  void finish();  // after the last output time: reports what is still open
+ private:
+  void flush_near();
+  void check_unprojected();
+  void check_drift(double t, const VectorXd& q0);
 };
 
 // Throws Error naming the first non-finite value of recorded sample k and its time (forward.cpp).

@@ -194,6 +194,11 @@ InverseData::InverseData(const Model& m, std::span<const Prescribed> prescribed,
   for (const auto& k : m.constraints) detail::velocity_rows(m, k, m.q0, o.t0, bb, sink);
   entries.reserve(entries.size() * 2 + 16);
   entries.clear();
+  Ks = MatrixXd::Zero(m.n1, m.n1);
+  col_scale = column_scaling(m);
+  pos_scale = col_scale.head(m.n0);
+  k_row = VectorXd::Ones(m.n1);
+  q0_pred = VectorXd::Zero(m.n0);
   q0_prev = q1_prev = a1_prev = VectorXd::Zero(0);
   q0_prev = q0_good = VectorXd::Zero(m.n0);
   s_good = VectorXd::Zero(dof);
@@ -314,6 +319,57 @@ NewtonStatus newton(const Model& m, InverseData& d, double t) {
   return status;
 }
 
+// The positions just solved against their prediction from the last sample (d.q0_pred): on a
+// smooth branch they differ by O(h^3); a difference comparable to the predicted motion itself
+// means the positions jumped (another assembly mode) or the samples do not resolve a singular
+// passage. Compared in dimensionless coordinates q0 / pos_scale.
+void check_branch(const Model& m, InverseData& d, double t) {
+  double dev = 0, step = 0;
+  int worst = 0;
+  for (int k = 0; k < m.n0; ++k) {
+    const double w = 1 / d.pos_scale[k];
+    const double e = std::abs(d.q0[k] - d.q0_pred[k]) * w;
+    step = std::max(step, std::abs(d.q0_pred[k] - d.q0_prev[k]) * w);
+    if (e > dev) dev = e, worst = k;
+  }
+  // floor: 1e-8 of the mechanism's size (far above the Newton tolerance), in the same units
+  double floor = 0;
+  for (int k = 0; k < m.n0; ++k)
+    if (m.rate_refs[k].body >= 0) floor = std::max(floor, 1e-8 * m.scale / d.pos_scale[k]);
+  if (!(dev > d.options.branch_jump * step && dev > floor)) return;
+  d.warnings.push_back("the positions jumped between t = " + fmt(d.t_prev) +
+                       " s and t = " + fmt(t) + " s (" + prescribed_values(d) + "): '" +
+                       m.coordinate_labels[worst] + "' is " + fmt(d.q0[worst]) +
+                       ", predicted from the velocities " + fmt(d.q0_pred[worst]) +
+                       " (another assembly mode, or a singular configuration passed between the "
+                       "samples; results near it are not reliable: use more samples)");
+}
+
+// Singular configurations between and at samples: the orientation (sign of det) of the
+// dimensionless K changes where the path crosses a singular configuration; a run of samples with
+// the pivot ratio below near_singular_pivot_ratio is reported at its smallest value.
+void check_singular_passage(const Model& m, InverseData& d, double t) {
+  d.det_sign = d.lu_K.det_sign();
+  if (d.has_previous && d.det_sign * d.det_sign_prev < 0)
+    d.warnings.push_back("singular configuration passed between t = " + fmt(d.t_prev) +
+                         " s and t = " + fmt(t) + " s (" + prescribed_values(d) +
+                         "): the constraint Jacobian with the prescribed coordinates changes "
+                         "orientation (undetermined there: " +
+                         null_variables(d.Ks, m.rate_labels) +
+                         "); efforts and reactions near it are not reliable");
+  if (d.pivot_ratio < d.options.near_singular_pivot_ratio) {
+    if (!d.near_singular || d.pivot_ratio < d.near_min) {
+      d.near_min = d.pivot_ratio;
+      d.near_t = t;
+      d.near_what = prescribed_values(d) + "; dimensionless pivot ratio " + fmt(d.pivot_ratio) +
+                    "; nearly undetermined: " + null_variables(d.Ks, m.rate_labels);
+    }
+    d.near_singular = true;
+  } else {
+    finish_inverse_warnings(d);
+  }
+}
+
 }  // namespace
 
 void inverse_dynamics_sample(const Model& m, InverseData& d, double t) {
@@ -340,6 +396,7 @@ void inverse_dynamics_sample(const Model& m, InverseData& d, double t) {
     d.q0 = d.q0_prev + h * d.q1_prev.head(m.n0) + (0.5 * h * h) * d.a1_prev.head(m.n0);
   }
   for (int k = 0; k < dof; ++k) d.q0[d.p_index[k]] = d.s[k];
+  d.q0_pred = d.q0;
   NewtonStatus status = newton(m, d, t);
   if (status != NewtonStatus::converged) {
     double lambda = 0, step = 0.5;
@@ -365,6 +422,8 @@ void inverse_dynamics_sample(const Model& m, InverseData& d, double t) {
     }
   }
 
+  if (d.has_previous) check_branch(m, d, t);
+
   // ---- velocities and accelerations: K = [A; E]
   d.K.setZero();
   d.entries.clear();
@@ -375,9 +434,24 @@ void inverse_dynamics_sample(const Model& m, InverseData& d, double t) {
   if (!d.K.allFinite())
     throw Error("the velocity constraint Jacobian is not finite at t = " + fmt(t) + " s", m.name,
                 t);
-  d.pivot_ratio = d.lu_K.compute(d.K);
+  // factored in dimensionless form Ks = R K D (R: unit rows of A D, and E's rows back to 1), so
+  // that the singularity tests do not depend on units or size: K^-1 = D Ks^-1 R
+  for (int i = 0; i < m.m1; ++i) {
+    double s2 = 0;
+    for (int j = 0; j < m.n1; ++j)
+      s2 += (d.K(i, j) * d.col_scale[j]) * (d.K(i, j) * d.col_scale[j]);
+    d.k_row[i] = s2 > 0 ? 1 / std::sqrt(s2) : 1.0;
+  }
+  for (int k = 0; k < dof; ++k) d.k_row[m.m1 + k] = 1 / d.col_scale[d.p_index[k]];
+  d.Ks.noalias() = d.k_row.asDiagonal() * d.K * d.col_scale.asDiagonal();
+  d.pivot_ratio = d.lu_K.compute(d.Ks);
+  auto solve_K = [&](auto&& x) {
+    x.array() *= d.k_row.array();
+    d.lu_K.solve_in_place(x);
+    x.array() *= d.col_scale.array();
+  };
   if (d.pivot_ratio < o.singular_pivot_ratio) {
-    const std::string vars = null_variables(d.K, m.rate_labels);
+    const std::string vars = null_variables(d.Ks, m.rate_labels);
     if (!d.has_previous)
       throw Error("the prescribed coordinates (" + prescribed_values(d) +
                       ") are not independent inputs: the velocity constraints with them "
@@ -390,16 +464,17 @@ void inverse_dynamics_sample(const Model& m, InverseData& d, double t) {
                     vars + ")",
                 vars.substr(0, vars.find(',')), t);
   }
+  check_singular_passage(m, d, t);
   d.rhs.head(m.m1) = d.b;
   d.rhs.tail(dof) = d.s_dot;
   d.q1 = d.rhs;
-  d.lu_K.solve_in_place(d.q1);
+  solve_K(d.q1);
   acceleration_rhs(m, d.q0, d.q1, t, d.c);
   check_finite_rows(d.c, m.velocity_row_labels, "acceleration", t);
   d.rhs.head(m.m1) = d.c;
   d.rhs.tail(dof) = d.s_ddot;
   d.a1 = d.rhs;
-  d.lu_K.solve_in_place(d.a1);
+  solve_K(d.a1);
   const auto A = d.K.topRows(m.m1);
   d.row_residual.noalias() = A * d.q1;
   d.residual_velocity = m.m1 ? (d.row_residual - d.b).lpNorm<Eigen::Infinity>() : 0.0;
@@ -418,7 +493,7 @@ void inverse_dynamics_sample(const Model& m, InverseData& d, double t) {
     auto col = d.S.col(k);
     col.setZero();
     col[m.m1 + k] = 1.0;
-    d.lu_K.solve_in_place(col);
+    solve_K(col);
   }
   if (o.complement == ComplementMethod::recursive) d.S = recursive_complement(m, A);
   d.CtB.noalias() = d.S.transpose() * d.B;
@@ -433,8 +508,10 @@ void inverse_dynamics_sample(const Model& m, InverseData& d, double t) {
   // multipliers: K^T [lambda; mu] = B u - (M a - f), with mu = 0 for an exact solution
   d.rhs.noalias() = d.B * d.u;
   d.rhs -= d.w;
-  d.z = d.rhs;
+  d.z = d.rhs;  // K^-T = R Ks^-T D
+  d.z.array() *= d.col_scale.array();
   d.lu_K.solve_transpose_in_place(d.z);
+  d.z.array() *= d.k_row.array();
   d.lambda = d.z.head(m.m1);
 
   // ---- reactions: direct from multipliers, or split at eliminated joints
@@ -445,7 +522,15 @@ void inverse_dynamics_sample(const Model& m, InverseData& d, double t) {
   d.q1_prev = d.q1;
   d.a1_prev = d.a1;
   d.t_prev = t;
+  d.det_sign_prev = d.det_sign;
   d.has_previous = true;
+}
+
+void finish_inverse_warnings(InverseData& d) {
+  if (!d.near_singular) return;
+  d.near_singular = false;
+  d.warnings.push_back("near-singular configuration at t = " + fmt(d.near_t) + " s (" +
+                       d.near_what + ")");
 }
 
 InverseResult inverse_dynamics(const Model& m, std::span<const Prescribed> prescribed,
@@ -487,6 +572,8 @@ InverseResult inverse_dynamics(const Model& m, std::span<const Prescribed> presc
     r.reactions.row(k) = d.reactions.transpose();
     r.residuals.row(k) << d.residual_position, d.residual_velocity, d.residual_acceleration;
   }
+  finish_inverse_warnings(d);
+  r.warnings = d.warnings;
   r.cpu_seconds = detail::cpu_seconds() - start;
   return r;
 }

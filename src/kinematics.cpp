@@ -3,6 +3,7 @@
 
 #include <Eigen/QR>
 #include <Eigen/SVD>
+#include <algorithm>
 #include <cmath>
 #include <sstream>
 
@@ -80,8 +81,9 @@ VectorXd assemble(const Model& m, const VectorXd& q0_guess, double t, std::span<
     for (const auto& c : m.constraints)
       if (c.nrow0 > 0) detail::position_rows(m, c, q, t, psi, sink);
     if (!psi.allFinite())
-      throw Error("assembly: non-finite constraint residual " + worst_row(m.position_row_labels, psi),
-                  m.position_row_labels[worst_index(psi)], t);
+      throw Error(
+          "assembly: non-finite constraint residual " + worst_row(m.position_row_labels, psi),
+          m.position_row_labels[worst_index(psi)], t);
     const double norm = psi.norm();
     if (psi.lpNorm<Eigen::Infinity>() <= tol) return q;
     Eigen::CompleteOrthogonalDecomposition<MatrixXd> cod(J);
@@ -135,41 +137,105 @@ void check_constraint_ranks(const Model& m, const VectorXd& q0, double t) {
   MatrixXd Psi(m.m0, m.n0), A(m.m1, m.n1);
   position_jacobian(m, q0, t, psi, Psi);
   velocity_jacobian(m, q0, t, A, b);
-  if (auto rows = dependent_rows(Psi, 1e-10); !rows.empty())
+  // on the dimensionless Jacobians: the rank test does not depend on units or size
+  MatrixXd B;
+  const VectorXd d = column_scaling(m);
+  dimensionless_jacobian(Psi, d.head(m.n0), B);
+  if (auto rows = dependent_rows(B, 1e-10); !rows.empty())
     throw_redundant(rows, m.position_row_labels, "position", t);
-  if (auto rows = dependent_rows(A, 1e-10); !rows.empty())
+  dimensionless_jacobian(A, d, B);
+  if (auto rows = dependent_rows(B, 1e-10); !rows.empty())
     throw_redundant(rows, m.velocity_row_labels, "velocity", t);
 }
 
-namespace {
-Conditioning conditioning_of(const MatrixXd& J) {
+VectorXd column_scaling(const Model& m) {
+  VectorXd d = VectorXd::Ones(m.n1);
+  std::vector<bool> set(m.n1, false);
+  for (const Body& b : m.bodies) {
+    if (b.omega.var < 0) continue;
+    double l = 0;
+    for (const Vec2& p : b.geometry) l = std::max(l, (p - b.geometry[0]).norm());
+    if (!(l > 0) && b.mass > 0 && b.inertia > 0) l = std::sqrt(b.inertia / b.mass);
+    if (!(l > 0)) l = m.scale;
+    // bodies sharing one rotation (welded): the largest of them
+    d[b.omega.var] = set[b.omega.var] ? std::min(d[b.omega.var], 1 / l) : 1 / l;
+    set[b.omega.var] = true;
+  }
+  for (const auto& c : m.constraints) {
+    if (c.kind != ConstraintKind::coordinate) continue;
+    double s = 0;
+    for (const auto& [ref, w] : c.rate_terms)
+      if (ref.var >= 0 && ref.var != c.coord) s = std::max(s, std::abs(w) * d[ref.var]);
+    if (s > 0 && std::isfinite(s)) d[c.coord] = s;
+  }
+  return d;
+}
+
+void dimensionless_jacobian(const MatrixXd& J, const VectorXd& d, MatrixXd& out) {
+  out.noalias() = J * d.asDiagonal();
+  for (Eigen::Index i = 0; i < out.rows(); ++i) {
+    const double nr = out.row(i).norm();
+    if (nr > 0) out.row(i) /= nr;
+  }
+}
+
+Conditioning conditioning(const MatrixXd& J, const VectorXd& column_scale) {
   Conditioning c;
   c.rows = static_cast<int>(J.rows());
   c.cols = static_cast<int>(J.cols());
   if (J.size() == 0) return c;
-  Eigen::JacobiSVD<MatrixXd> svd(J);
+  MatrixXd B;
+  dimensionless_jacobian(J, column_scale, B);
+  Eigen::JacobiSVD<MatrixXd> svd(B);
   const auto& s = svd.singularValues();
   c.sigma_max = s[0];
   c.sigma_min = s[s.size() - 1];
-  const double thr = 1e-10 * std::max(1.0, c.sigma_max);
+  const double thr = 1e-10 * c.sigma_max;
   for (int k = 0; k < s.size(); ++k) c.rank += s[k] > thr;
   c.condition = c.sigma_min > 0 ? c.sigma_max / c.sigma_min : INFINITY;
   return c;
 }
+
+namespace {
+
+std::string largest_entries(const VectorXd& v, const std::vector<std::string>& labels) {
+  std::vector<int> idx(v.size());
+  for (int k = 0; k < v.size(); ++k) idx[k] = k;
+  std::sort(idx.begin(), idx.end(), [&](int a, int b) { return std::abs(v[a]) > std::abs(v[b]); });
+  std::string s;
+  const double top = v.size() ? std::abs(v[idx[0]]) : 0.0;
+  for (int k = 0; k < std::min<int>(3, static_cast<int>(v.size())); ++k)
+    if (std::abs(v[idx[k]]) > 0.1 * top && idx[k] < static_cast<int>(labels.size()))
+      s += (s.empty() ? "'" : ", '") + labels[idx[k]] + "'";
+  return s;
+}
+
 }  // namespace
+
+SingularDirection singular_direction(const MatrixXd& J, const VectorXd& d,
+                                     const std::vector<std::string>& row_labels,
+                                     const std::vector<std::string>& col_labels) {
+  if (J.size() == 0) return {};
+  MatrixXd B;
+  dimensionless_jacobian(J, d, B);
+  Eigen::JacobiSVD<MatrixXd> svd(B, Eigen::ComputeThinU | Eigen::ComputeThinV);
+  const int k = static_cast<int>(std::min(B.rows(), B.cols())) - 1;
+  return {largest_entries(svd.matrixU().col(k), row_labels),
+          largest_entries(svd.matrixV().col(k), col_labels)};
+}
 
 Conditioning velocity_conditioning(const Model& m, const VectorXd& q0, double t) {
   MatrixXd A(m.m1, m.n1);
   VectorXd b(m.m1);
   velocity_jacobian(m, q0, t, A, b);
-  return conditioning_of(A);
+  return conditioning(A, column_scaling(m));
 }
 
 Conditioning position_conditioning(const Model& m, const VectorXd& q0, double t) {
   MatrixXd Psi(m.m0, m.n0);
   VectorXd psi(m.m0);
   position_jacobian(m, q0, t, psi, Psi);
-  return conditioning_of(Psi);
+  return conditioning(Psi, column_scaling(m).head(m.n0));
 }
 
 DofReport degrees_of_freedom(const Model& m, const VectorXd& q0, double t) {

@@ -31,9 +31,11 @@ using Eigen::VectorXd;
 enum class Integrator {
   cvode_bdf,    // SUNDIALS CVODE, BDF (orders 1-5), Newton + dense LU, projection each step
   cvode_adams,  // SUNDIALS CVODE, Adams-Moulton (orders 1-12), fixed-point iteration, no projection
+                // (CVODE projects only BDF): stops at a near-singular configuration
   rk4,          // classical Runge-Kutta, fixed step, projection each step
   dopri5,       // Dormand-Prince 5(4), adaptive step (rtol, atol), projection each step
-  baumgarte,    // Mo2DPack-compatible: RK4, velocity constraints stabilized by Baumgarte, no projection
+  baumgarte,    // Mo2DPack-compatible: RK4, velocity constraints stabilized by Baumgarte, no
+                // projection
 };
 enum class Formulation { augmented_lagrangian, lagrange, null_space };
 
@@ -76,10 +78,19 @@ struct ForwardOptions {
   std::vector<std::function<double(double t)>> efforts{};
   // Stop early when this function of the state changes sign (root finding between steps).
   std::function<double(double t, const VectorXd& q0, const VectorXd& q1)> stop_when{};
-  // Warn at an output time where (sigma_min / sigma_max)^2 of the constraint Jacobian (unit rows)
-  // is below this: 1e-4 is sigma ratio 1e-2, about 2 ms from a singular instant of the double
-  // four-bar.
+  // Warn where (sigma_min / sigma_max)^2 of the dimensionless constraint Jacobian (columns scaled
+  // by column_scaling, unit rows; mo2d/kinematics.hpp) is below this
+  // at output times: 1e-4 is sigma ratio 1e-2, about 2 ms from a singular instant of the double
+  // four-bar. One warning per run of such output times, at the smallest ratio, naming the
+  // constraints that become dependent and the motion they leave undetermined. Independent of
+  // units and of the mechanism's size.
   double singular_warning = 1e-4;
+  // Largest position-constraint drift at an output time, relative to the mechanism's size (each
+  // row in dimensionless form): beyond it the run stops with an error naming the time and the
+  // worst row (the state has left the constraint manifold, and may have left its branch); for
+  // cvode_adams and baumgarte, which do not project, a warning (their drift follows the
+  // tolerance or step).
+  double drift_tolerance = 1e-6;
   // Called at every output time with that time (e.g. a progress bar); not part of the dynamics.
   std::function<void(double t)> progress{};
   // Called about every monitor_interval seconds of wall time from inside the integration (also
@@ -96,20 +107,21 @@ void check_forward_options(const Model& m, const ForwardOptions& options);
 
 struct ForwardStats {
   long steps = 0, rhs_evaluations = 0, factorizations = 0, projections = 0, error_test_failures = 0;
-  long solver_iterations = 0;  // augmented Lagrangian iterations, summed over evaluations
+  long solver_iterations = 0;        // augmented Lagrangian iterations, summed over evaluations
   long regularized_evaluations = 0;  // evaluations near a singular configuration (regularized)
-  long stepped_over = 0;       // steps redone to avoid evaluating inside a singular instant
+  long stepped_over = 0;             // steps redone to avoid evaluating inside a singular instant
   double cpu_seconds = 0;
   bool stopped_by_event = false;
   double t_end = 0;
   double min_pivot_ratio = 1;  // smallest (sigma_min / sigma_max)^2 of A seen at output times
+  double max_drift = 0;        // largest position drift at output times (see drift_tolerance)
   std::vector<std::string> warnings;
 };
 
 struct ForwardResult {
   std::vector<std::string> coordinate_labels, rate_labels, input_labels, reaction_labels;
   VectorXd time;
-  MatrixXd q0, q1, a1;         // samples x n0 / n1 / n1
+  MatrixXd q0, q1, a1;          // samples x n0 / n1 / n1
   VectorXd kinetic, potential;  // energies (J); potential of gravity (datum y = 0) and springs
   VectorXd input_work;          // integral of the input power B u . q1 from t0 (J)
   VectorXd load_work;           // integral of the power of the applied forces and torques (J)
@@ -133,8 +145,9 @@ ForwardResult forward_dynamics(const Model& m, const State& initial, const Forwa
 // problem at the requested instant (no interpolation error); `from_samples` interpolates a sampled
 // result with cubic Hermite splines (slopes from centred differences), so its accuracy depends on
 // the sampling.
-std::vector<std::function<double(double)>> efforts_from_inverse(
-    const Model& m, std::vector<Prescribed> prescribed, const InverseOptions& options = {});
+std::vector<std::function<double(double)>> efforts_from_inverse(const Model& m,
+                                                                std::vector<Prescribed> prescribed,
+                                                                const InverseOptions& options = {});
 std::vector<std::function<double(double)>> efforts_from_samples(const InverseResult& r);
 
 // Energy balance of a run at every sample: K + V - (K + V)(t0) - W_inputs - W_loads

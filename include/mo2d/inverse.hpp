@@ -40,7 +40,15 @@ struct InverseOptions {
   int samples = 501;
   double position_tolerance = 1e-12;  // |psi|_inf, relative to Model::scale
   int max_newton_iterations = 30;
+  // Singularity tests, on the dimensionless K = [N A D; E] (D: column_scaling of the model, N:
+  // unit rows; mo2d/kinematics.hpp), so independent of units and size:
   double singular_pivot_ratio = 1e-10;  // min/max |pivot| of K below which a sample is singular
+  // a run of samples whose pivot ratio dips below this is reported once, at its smallest value
+  double near_singular_pivot_ratio = 1e-3;
+  // the positions found at a sample differ from their prediction from the last sample's
+  // velocities and accelerations by more than this fraction of the predicted motion: reported
+  // (a switch of assembly mode, or a singular passage the samples do not resolve)
+  double branch_jump = 0.5;
   ComplementMethod complement = ComplementMethod::prescribed;
   // Budgets (mo2d/budget.hpp): wall-clock seconds of the run (<= 0 or inf: none), the memory of
   // its dense matrices and results (bytes, estimated before allocating), a progress monitor
@@ -68,19 +76,30 @@ struct InverseData {
 
   // results of the last sample (written by inverse_dynamics_sample)
   double t = 0;
-  VectorXd q0, q1, a1;      // coordinates, quasi-velocities, quasi-accelerations
-  VectorXd u;               // efforts, one per input (Model::inputs)
-  VectorXd lambda;          // multipliers of the velocity rows (M a1 = f + B u - A^T lambda)
-  VectorXd reactions;       // Model::reactions
+  VectorXd q0, q1, a1;  // coordinates, quasi-velocities, quasi-accelerations
+  VectorXd u;           // efforts, one per input (Model::inputs)
+  VectorXd lambda;      // multipliers of the velocity rows (M a1 = f + B u - A^T lambda)
+  VectorXd reactions;   // Model::reactions
   double residual_position = 0, residual_velocity = 0, residual_acceleration = 0;
   int newton_iterations = 0;
-  double pivot_ratio = 0;   // min/max |pivot| of the LU of K (a cheap conditioning indicator)
+  double pivot_ratio = 0;  // min/max |pivot| of the LU of the dimensionless K (a cheap
+                           // conditioning indicator)
+  // Singular passages and branch jumps found so far (time, prescribed values, variables), in the
+  // order found; inverse_dynamics() copies them to InverseResult::warnings.
+  std::vector<std::string> warnings;
 
   // workspace
   std::vector<int> colmap;  // coordinate -> free column (-1 prescribed)
   VectorXd s, s_dot, s_ddot, psi, trial, q0_trial, b, c, rhs, w, f, local, local_a, z, Ctw;
   VectorXd row_residual;
   MatrixXd J, K, B, CtB;
+  MatrixXd Ks;                  // dimensionless K = diag(k_row) K diag(col_scale), factored
+  VectorXd col_scale, k_row;    // column_scaling of the model; row scaling of K
+  VectorXd pos_scale, q0_pred;  // its first n0 entries (dimensionless q0 / pos_scale); prediction
+  int det_sign = 0, det_sign_prev = 0;
+  bool near_singular = false;  // inside a run of samples below near_singular_pivot_ratio
+  double near_min = 1, near_t = 0;
+  std::string near_what;  // prescribed values and variables at the smallest pivot ratio
   MatrixXd S;  // orthogonal complement C (n1 x dof) used for the efforts of the last sample
   detail::SmallLU lu_pos, lu_K;  // positions (free coordinates), K = [A; E]
   Eigen::PartialPivLU<MatrixXd> lu_u;
@@ -97,6 +116,9 @@ struct InverseData {
 // configuration, when the positions cannot be solved, or when a result is not finite (naming the
 // variable).
 void inverse_dynamics_sample(const Model& m, InverseData& d, double t);
+// After the last sample: reports a run of near-singular samples still open (inverse_dynamics
+// calls it; needed only when calling inverse_dynamics_sample directly).
+void finish_inverse_warnings(InverseData& d);
 
 struct InverseResult {
   std::vector<std::string> coordinate_labels, rate_labels, input_labels, reaction_labels;
@@ -106,6 +128,9 @@ struct InverseResult {
   MatrixXd reactions;   // samples x reactions
   MatrixXd residuals;   // samples x 3: position, velocity, acceleration (inf norms)
   double cpu_seconds = 0;
+  // singular configurations passed or approached, and jumps between assembly modes, with the
+  // time and the variables (see InverseOptions)
+  std::vector<std::string> warnings;
   int column(const std::string& label) const;  // index in coordinate labels
   int input(const std::string& label) const;
   int reaction(const std::string& label) const;

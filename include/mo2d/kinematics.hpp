@@ -3,6 +3,8 @@
 // and acceleration level, assembly from approximate positions, rank and conditioning.
 #include <Eigen/Core>
 #include <span>
+#include <string>
+#include <vector>
 
 #include "mo2d/model.hpp"
 
@@ -34,14 +36,44 @@ VectorXd assemble(const Model& m, const VectorXd& q0_guess, double t, std::span<
 // is rank deficient.
 void check_constraint_ranks(const Model& m, const VectorXd& q0, double t);
 
+// Dimensionless constraint Jacobians. The columns of a Jacobian carry the units of the variables
+// (m/s for node velocities and slider rates, rad/s for rotation rates), its rows those of the
+// constraints, so its singular values depend on the units and on the size of the mechanism (the
+// rotation columns of a rigid body's rows scale with its length). column_scaling(m) returns d
+// (n1; its first n0 entries scale the coordinates) with d = 1 for lengths and 1 / l for a
+// rotation, l the size of its body (largest node distance from node 0; for a one-node body its
+// radius of gyration; Model::scale if it has neither); an extra coordinate takes the largest
+// |weight| d of its rate terms. J diag(d) with unit rows is then the Jacobian in lengths only
+// (a rotation measured by the arc l theta): every singularity test in mo2d is made on it, so it
+// does not depend on units or on the size of the mechanism.
+VectorXd column_scaling(const Model& m);
+// J diag(d) with every nonzero row divided by its norm, into out.
+void dimensionless_jacobian(const MatrixXd& J, const VectorXd& d, MatrixXd& out);
+
 struct Conditioning {
   int rows = 0, cols = 0, rank = 0;
-  double sigma_max = 0, sigma_min = 0;  // extreme nonzero-threshold singular values
-  double condition = 0;                  // sigma_max / sigma_min (inf if rank deficient)
+  // extreme singular values of the dimensionless Jacobian (column_scaling of the model, unit
+  // rows): independent of units and of the mechanism's size
+  double sigma_max = 0, sigma_min = 0;
+  double condition = 0;  // sigma_max / sigma_min (inf if rank deficient)
 };
-// Singular values of the velocity constraint Jacobian A at q0 (SVD; not for the hot path).
+// Singular values of the dimensionless velocity constraint Jacobian A at q0 (SVD; not for the
+// hot path); rank: singular values above 1e-10 sigma_max.
 Conditioning velocity_conditioning(const Model& m, const VectorXd& q0, double t = 0);
 Conditioning position_conditioning(const Model& m, const VectorXd& q0, double t = 0);
+// The same with a given column scaling (e.g. the one of the initial configuration).
+Conditioning conditioning(const MatrixXd& J, const VectorXd& column_scale);
+
+// Where the dimensionless J diag(d) (unit rows) is closest to losing rank: the rows that become
+// dependent (left singular vector of its smallest singular value, sigma number min(rows, cols))
+// and the variables of the motion they no longer determine (right singular vector), each as the
+// labels of its largest entries (at most three, above 10 % of the largest): "'a', 'b'".
+struct SingularDirection {
+  std::string rows, variables;
+};
+SingularDirection singular_direction(const MatrixXd& J, const VectorXd& d,
+                                     const std::vector<std::string>& row_labels,
+                                     const std::vector<std::string>& col_labels);
 
 // Degrees of freedom at velocity level n1 - rank(A) and position level n0 - rank(Psi) at q0.
 struct DofReport {

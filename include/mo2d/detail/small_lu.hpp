@@ -47,6 +47,19 @@ class SmallLU {
     return ratio_;
   }
   double pivot_ratio() const { return ratio_; }
+  // Sign of det A (+1, -1; 0 if singular): the orientation of A, which changes where a path of
+  // matrices crosses a singular one.
+  int det_sign() const {
+    const int n = static_cast<int>(lu_.rows());
+    int sign = 1;
+    for (int k = 0; k < n; ++k) {
+      if (perm_[k] != k) sign = -sign;
+      const double u = lu_(k, k);
+      if (u == 0) return 0;
+      if (u < 0) sign = -sign;
+    }
+    return sign;
+  }
 
   // x = A^-1 b, in place.
   void solve_in_place(Eigen::Ref<Eigen::VectorXd> x) const {
