@@ -394,7 +394,8 @@ struct Relation {
 // Generated mechanisms on which a relation fails because of a known mo2d bug (a DISABLED_ test
 // below holds each case): still run and shown in the table as failures, but not test failures.
 // 184: inverse dynamics at 21 samples jumps to the other assembly branch of a slider-crank between
-//      t = 0 and 0.104 s without a word (201 samples stay on the branch); the round trip sees it.
+//      t = 0 and 0.104 s (201 samples stay on the branch); the round trip sees it. The jump is
+//      now reported (InverseBranchJumpBetweenSamplesIsReported); keeping the branch is not done.
 const std::vector<std::uint64_t> kKnownBugs = {184};
 
 struct Table {
@@ -513,9 +514,10 @@ void check_mechanism(const Mechanism& mech, Table& table) {
   // efforts open loop is unstable on some mechanisms (a spring pulling a driven slider-crank
   // away, a light chain under gravity): an error of the integrator grows like a perturbation.
   // The amplification A is measured first (cheap runs at rtol 1e-7, efforts scaled by 1 + 1e-6):
-  // if a 1e-6 relative change of the efforts moves the motion by more than 1e-4 (A > 1e2), the
-  // round trip cannot be resolved to 1e-6 (BDF's global error at rtol 1e-10 is up to ~100 rtol,
-  // times A) and the mechanism is counted as skipped ("unstable replay").
+  // if a 1e-6 relative change of the efforts moves the motion (positions or velocities) by more
+  // than 1e-4 (A > 1e2), the round trip cannot be resolved to 1e-6 (BDF's global error at rtol
+  // 1e-10 is up to ~100 rtol, times A) and the mechanism is counted as skipped ("unstable
+  // replay").
   const State s0{0, base.q0.row(0).transpose(), base.q1.row(0).transpose()};
   auto replay = [&](double rtol, double factor, long max_steps) {
     ForwardOptions fo{.t0 = 0,
@@ -532,7 +534,11 @@ void check_mechanism(const Mechanism& mech, Table& table) {
   double amplification = INFINITY;
   try {
     const ForwardResult a = replay(1e-7, 1.0, 20000), b = replay(1e-7, 1.0 + 1e-6, 20000);
-    amplification = compare(observe(model, flat, b), observe(model, flat, a), L, "p:").worst / 1e-6;
+    // positions and velocities: the relation compares both (velocities amplify more on some
+    // mechanisms: seed 124, positions 1e2, velocities 2e5 x rtol)
+    const auto ob = observe(model, flat, b), oa = observe(model, flat, a);
+    amplification =
+        std::max(compare(ob, oa, L, "p:").worst, compare(ob, oa, L, "v:").worst) / 1e-6;
   } catch (const Error&) {  // the cheap runs ran out of steps: treated as unstable
   }
   ForwardResult fr;
@@ -664,7 +670,12 @@ TEST(Metamorphic, GeneratedMechanisms) {
 // samples, with exit 0 and no warning. With 201 samples it stays on the branch, and forward
 // dynamics driven by the same efforts follows the 201-sample solution to 1e-9 m. A branch switch
 // between samples must be detected (issue 10 item 5: singularity / branch helper).
-TEST(Metamorphic, DISABLED_InverseStaysOnItsBranchBetweenSamples) {
+// Seed 184 (a slot, a five-bar and a slider-crank): at 21 samples inverse dynamics converges to
+// the slider-crank's other assembly mode between the first two samples (b17.P.x 3.48 m instead of
+// 5.67 m at t = 0.104 s); at 201 samples it stays on its branch. Found by the round trip. Not a
+// silent wrong answer any more: the jump is reported with its time and coordinate. (Keeping the
+// branch, e.g. by time continuation between samples, is still to be done.)
+TEST(Metamorphic, InverseBranchJumpBetweenSamplesIsReported) {
   GeneratorStats stats;
   const Mechanism mech = generate(184, stats);
   const Model model = build_model(to_system(mech));
@@ -674,7 +685,13 @@ TEST(Metamorphic, DISABLED_InverseStaysOnItsBranchBetweenSamples) {
   const InverseResult fine =
       inverse_dynamics(model, motion, {.t0 = 0, .t1 = mech.t1, .samples = 201});
   const int c = model.coordinate("b17.P.x");
+  bool jumped = false;
   for (int i = 0; i < 21; ++i)
-    EXPECT_NEAR(coarse.q0(i, c), fine.q0(10 * i, c), 1e-9 * mech.length)
-        << "t = " << coarse.time[i];
+    jumped |= std::abs(coarse.q0(i, c) - fine.q0(10 * i, c)) > 1e-9 * mech.length;
+  ASSERT_TRUE(jumped) << "the coarse run kept its branch: turn this into a branch-keeping test";
+  bool reported = false;
+  for (const std::string& w : coarse.warnings)
+    reported |= w.find("the positions jumped between t = 0 s") != std::string::npos;
+  EXPECT_TRUE(reported) << "the branch jump of seed 184 is not reported";
+  EXPECT_TRUE(fine.warnings.empty()) << fine.warnings.front();
 }
