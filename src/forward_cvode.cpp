@@ -182,16 +182,9 @@ void run_cvode(const Model& m, ForwardData& d, const State& s0, const ForwardOpt
   void* mem = CVodeCreate(bdf ? CV_BDF : CV_ADAMS, ctx);
   if (!mem) throw Error("SUNDIALS CVodeCreate failed", "CVodeCreate", o.t0);
   std::unique_ptr<void, void (*)(void*)> mem_guard(mem, [](void* p) { CVodeFree(&p); });
-  RunBudget budget({.run = "forward dynamics of '" + m.name + "' (" + to_string(o.integrator) + ")",
-                    .name = m.name,
-                    .t0 = o.t0,
-                    .t1 = o.t1,
-                    .max_steps = o.max_steps,
-                    .max_seconds = o.max_seconds,
-                    .monitor = o.monitor,
-                    .interval = o.monitor_interval,
-                    .hint = bdf ? "loosen rtol/atol, or try dopri5 (non-stiff mechanisms)"
-                                : "loosen rtol/atol, or try cvode_bdf (stiff mechanisms)"});
+  RunBudget budget(forward_budget(m, o,
+                                  bdf ? "loosen rtol/atol, or try dopri5 (non-stiff mechanisms)"
+                                      : "loosen rtol/atol, or try cvode_bdf (stiff mechanisms)"));
   CvodeUser user{&m, &d, VectorXd(m.n0), VectorXd(m.n1), terms, false, {}, &budget, mem, nullptr};
   check_flag(CVodeInit(mem, cv_rhs, o.t0, y), "CVodeInit", o.t0);
   check_flag(CVodeSetUserData(mem, &user), "CVodeSetUserData", o.t0);

@@ -527,4 +527,17 @@ void Recorder::finish() {
   flush_near();
 }
 
+detail::RunBudget::Settings forward_budget(const Model& m, const ForwardOptions& o,
+                                           std::string hint) {
+  return {.run = "forward dynamics of '" + m.name + "' (" + to_string(o.integrator) + ")",
+          .name = m.name,
+          .t0 = o.t0,
+          .t1 = o.t1,
+          .max_steps = o.max_steps,
+          .max_seconds = o.max_seconds,
+          .monitor = o.monitor,
+          .interval = o.monitor_interval,
+          .hint = std::move(hint)};
+}
+
 }  // namespace mo2d::detail

@@ -9,6 +9,7 @@
 #include "mo2d/detail/reactions.hpp"
 #include "mo2d/detail/small_lu.hpp"
 #include "mo2d/forward.hpp"
+#include "run_budget.hpp"
 
 namespace mo2d::detail {
 
@@ -124,5 +125,10 @@ void run_explicit_rk(const Model& m, ForwardData& d, const State& s0, const Forw
                      Recorder& rec);
 void run_cvode(const Model& m, ForwardData& d, const State& s0, const ForwardOptions& o,
                Recorder& rec);
+
+// The budget of a forward run (max_steps, max_seconds, progress monitor) with the hint its
+// error gives besides the budget (integrator, tolerances, step).
+detail::RunBudget::Settings forward_budget(const Model& m, const ForwardOptions& o,
+                                           std::string hint);
 
 }  // namespace mo2d::detail

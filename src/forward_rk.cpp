@@ -73,16 +73,10 @@ class RkDriver {
         d_(d),
         o_(o),
         tab_(tab),
-        budget_({.run = "forward dynamics of '" + m.name + "' (" + to_string(o.integrator) + ")",
-                 .name = m.name,
-                 .t0 = o.t0,
-                 .t1 = o.t1,
-                 .max_steps = o.max_steps,
-                 .max_seconds = o.max_seconds,
-                 .monitor = o.monitor,
-                 .interval = o.monitor_interval,
-                 .hint = tab.embedded ? "loosen rtol/atol, or try cvode_bdf (stiff mechanisms)"
-                                      : "use a longer step"}),
+        budget_(forward_budget(m, o,
+                               tab.embedded
+                                   ? "loosen rtol/atol, or try cvode_bdf (stiff mechanisms)"
+                                   : "use a longer step")),
         n_(m.n0 + m.n1 + kEnergyTerms),
         q0_(m.n0),
         q1_(m.n1),
