@@ -106,7 +106,7 @@ struct Recorder {
   // a run of output times below o.singular_warning, reported once at its smallest pivot ratio
   bool near = false;
   double near_min = 1, near_t = 0, near_first = 0, near_last = 0;
-  std::string near_what;
+  std::string near_what{};
   bool drift_reported = false;
   // energies: the kEnergyTerms integrated terms at t
   void record(double t, const VectorXd& q0, const VectorXd& q1, const double* energies);
