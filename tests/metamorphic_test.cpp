@@ -9,8 +9,8 @@
 //   power balance: d/dt (kinetic + potential) = input + load power - dissipation, with energy
 //     functions written here from the generator's data (not from mo2d's Model);
 //   round trip: the inverse efforts fed to forward dynamics reproduce the motion;
-//   forward energy: kinetic + potential + dissipated - input work constant, and the forward
-//     energies equal the independent ones;
+//   forward energy: kinetic + potential + dissipated - input, load and constraint work constant
+//     (all loads, every mechanism), and the forward energies equal the independent ones;
 //   Box2D: the cross-check agrees (mechanisms without springs).
 //
 // Count and seed: MO2D_META_COUNT (default 300, 40 in a sanitizer build), MO2D_META_SEED
@@ -27,10 +27,11 @@
 //    accelerations and efforts (two more linear solves) carry at most ~(1/1e-2)^2 * 1e-12 = 1e-8;
 //  - power balance: 1e-8 (the same bound: the balance is an identity of the solved quantities);
 //  - round trip and forward energy: 1e-6: CVODE BDF at rtol 1e-10 (global error up to ~100 rtol)
-//    times the measured amplification A <= 1e2 of the replay (more unstable replays are skipped);
-//  - Box2D: its own tolerances (CrosscheckOptions, docs/crosscheck.md) with the step scaled with
-//    the mechanism's time (h = tau / 640, i.e. 1/2000 s for a 1 m mechanism), on mechanisms
-//    without springs and with mass ratios <= 10.
+//    times the measured amplification A <= 1e2 of the replay (more unstable replays are skipped
+//    by the round trip; their energy relations run at rtol 1e-11, see check_mechanism);
+//  - Box2D: its own tolerances (CrosscheckOptions, docs/crosscheck.md), default start and
+//    feedback, the step scaled with the mechanism's time (h = tau / 640, i.e. 1/2000 s for a 1 m
+//    mechanism), on mechanisms without springs and with mass ratios <= 10.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -57,11 +58,11 @@ using namespace mo2d::meta;
 
 namespace {
 
-constexpr double kExact = 1e-8;    // transformations and second formulations
-constexpr double kPower = 1e-8;    // power balance of the inverse solution
-constexpr double kForward = 1e-6;  // round trip and forward energy balance
-constexpr int kSamples = 21;       // samples per run
-constexpr double kBox2dMassRatio = 50;  // Box2D: largest body mass over the smallest
+constexpr double kExact = 1e-8;         // transformations and second formulations
+constexpr double kPower = 1e-8;         // power balance of the inverse solution
+constexpr double kForward = 1e-6;       // round trip and forward energy balance
+constexpr int kSamples = 21;            // samples per run
+constexpr double kBox2dMassRatio = 10;  // Box2D: largest body mass over the smallest
 
 // ---- observations
 // --------------------------------------------------------------------------------
@@ -569,7 +570,7 @@ void check_mechanism(const Mechanism& mech, Table& table) {
   std::string forward_error;
   try {
     fr = replay(env_double("MO2D_META_RTOL", resolvable ? 1e-10 : 1e-11), 1.0,
-               resolvable ? 100000 : 20000);
+                resolvable ? 100000 : 20000);
     forward_ok = true;
     if (verbose)
       std::printf("  replay: amplification %g, %ld steps\n", amplification, fr.stats.steps);
@@ -644,11 +645,14 @@ void check_mechanism(const Mechanism& mech, Table& table) {
 
   // Box2D: mechanisms it can translate (no springs), with the library's default start (settling
   // on the motion before t0) and feedback, the step scaled with the mechanism's time. Compared:
-  //  - mass ratios (largest body over the smallest) <= 50. Box2D's manual asks for ratios below
-  //    10:1 (sequential impulses lose accuracy beyond); measured on seeds 1..300 with settling,
-  //    every settled mechanism up to 50 agrees (worst 52 % of the tolerance, seed 24, ratio 42),
-  //    beyond it they disagree more and more often (seed 262, ratio 88: 11 % RMS; 14 of 76 with
-  //    ratios 50..1000; seed 49, ratio 2200: 1.3e6 %), while every other relation holds on them.
+  //  - mass ratios (largest body over the smallest) <= 10, as Box2D's manual asks (sequential
+  //    impulses lose accuracy beyond). Measured with settling: on seeds 1..300 every settled
+  //    mechanism up to a ratio of 50 agrees (worst 52 % of the tolerance), but on seeds
+  //    301..1300 ratios of 10.9 (seed 824, chain3: j2.torque RMS error 3.6 times its peak),
+  //    25 (seed 714: max 4.3 %) and 28 (seed 976: RMS error 2e3 times the peak) disagree while
+  //    every other relation (round trip included) holds on them: not resolved (docs/testing.md),
+  //    so the class stays at 10. Beyond: seed 262, ratio 88: 11 % RMS; 14 of 48 with ratios
+  //    50..1000 on seeds 1..300; seed 49, ratio 2200: effort RMS error 1.3e4 times its peak.
   //  - Box2D settled before t0: where the motion cannot be solved before t0 (it leaves the
   //    workspace just before the start), the cross-check starts cold and skips 10 steps; that
   //    start is not what its tolerances were measured for (seed 204, ratio 22: 17 % RMS). Those
