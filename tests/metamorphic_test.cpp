@@ -9,8 +9,8 @@
 //   power balance: d/dt (kinetic + potential) = input + load power - dissipation, with energy
 //     functions written here from the generator's data (not from mo2d's Model);
 //   round trip: the inverse efforts fed to forward dynamics reproduce the motion;
-//   forward energy: kinetic + potential + dissipated - input work constant, and the forward
-//     energies equal the independent ones;
+//   forward energy: kinetic + potential + dissipated - input, load and constraint work constant
+//     (all loads, every mechanism), and the forward energies equal the independent ones;
 //   Box2D: the cross-check agrees (mechanisms without springs).
 //
 // Count and seed: MO2D_META_COUNT (default 300, 40 in a sanitizer build), MO2D_META_SEED
@@ -27,10 +27,11 @@
 //    accelerations and efforts (two more linear solves) carry at most ~(1/1e-2)^2 * 1e-12 = 1e-8;
 //  - power balance: 1e-8 (the same bound: the balance is an identity of the solved quantities);
 //  - round trip and forward energy: 1e-6: CVODE BDF at rtol 1e-10 (global error up to ~100 rtol)
-//    times the measured amplification A <= 1e2 of the replay (more unstable replays are skipped);
-//  - Box2D: its own tolerances (CrosscheckOptions, docs/crosscheck.md) with the step scaled with
-//    the mechanism's time (h = tau / 640, i.e. 1/2000 s for a 1 m mechanism), on mechanisms
-//    without springs and with mass ratios <= 10.
+//    times the measured amplification A <= 1e2 of the replay (more unstable replays are skipped
+//    by the round trip; their energy relations run at rtol 1e-11, see check_mechanism);
+//  - Box2D: its own tolerances (CrosscheckOptions, docs/crosscheck.md), default start and
+//    feedback, the step scaled with the mechanism's time (h = tau / 640, i.e. 1/2000 s for a 1 m
+//    mechanism), on mechanisms without springs and with mass ratios <= 10.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -57,10 +58,11 @@ using namespace mo2d::meta;
 
 namespace {
 
-constexpr double kExact = 1e-8;    // transformations and second formulations
-constexpr double kPower = 1e-8;    // power balance of the inverse solution
-constexpr double kForward = 1e-6;  // round trip and forward energy balance
-constexpr int kSamples = 21;       // samples per run
+constexpr double kExact = 1e-8;         // transformations and second formulations
+constexpr double kPower = 1e-8;         // power balance of the inverse solution
+constexpr double kForward = 1e-6;       // round trip and forward energy balance
+constexpr int kSamples = 21;            // samples per run
+constexpr double kBox2dMassRatio = 10;  // Box2D: largest body mass over the smallest
 
 // ---- observations
 // --------------------------------------------------------------------------------
@@ -389,6 +391,7 @@ struct Relation {
   double worst = 0;
   std::uint64_t worst_seed = 0;
   std::string where{};
+  std::map<std::string, long> skip_reasons{};
 };
 
 // Generated mechanisms on which a relation fails because of a known mo2d bug (a DISABLED_ test
@@ -421,6 +424,11 @@ struct Table {
                              << ") on mechanism seed " << m.seed << " [" << m.family
                              << "]; reproduce: MO2D_META_SEED=" << m.seed << " MO2D_META_COUNT=1";
   }
+  void skip(const std::string& name, double tol, const std::string& reason) {
+    Relation& r = row(name, tol);
+    ++r.skipped;
+    ++r.skip_reasons[reason];
+  }
   void failure(const std::string& name, double tol, const Mechanism& m, const std::string& what) {
     Deviation d;
     d.add(INFINITY, what);
@@ -433,12 +441,19 @@ struct Table {
       std::printf("%-34s %6ld %7ld %10ld %9ld %10.2e %10.1e %llu: %s\n", r.name.c_str(),
                   r.mechanisms, r.skipped, r.checks, r.failures, r.worst, r.tolerance,
                   static_cast<unsigned long long>(r.worst_seed), r.where.c_str());
+    for (const auto& r : rows)
+      for (const auto& [reason, n] : r.skip_reasons)
+        std::printf("  %s skipped %ld: %s\n", r.name.c_str(), n, reason.c_str());
   }
 };
 
 long env_long(const char* name, long fallback) {
   const char* v = std::getenv(name);
   return v && *v ? std::strtol(v, nullptr, 10) : fallback;
+}
+double env_double(const char* name, double fallback) {
+  const char* v = std::getenv(name);
+  return v && *v ? std::strtod(v, nullptr) : fallback;
 }
 
 // ---- relations on one mechanism -----------------------------------------------------------------
@@ -541,22 +556,54 @@ void check_mechanism(const Mechanism& mech, Table& table) {
         std::max(compare(ob, oa, L, "p:").worst, compare(ob, oa, L, "v:").worst) / 1e-6;
   } catch (const Error&) {  // the cheap runs ran out of steps: treated as unstable
   }
+  // The replay itself (CVODE BDF, the default integrator) runs on every mechanism: an unstable
+  // replay leaves the inverse motion, but whatever motion it follows must still balance its
+  // energy and have the independent energies. The balance error is the sum of the local errors
+  // of the steps (a perturbation is not amplified: the perturbed motion balances too), about
+  // N rtol of the energy scale after N steps. A resolvable replay takes a few hundred steps at
+  // rtol 1e-10 (at most 9383 on seeds 1..300); an unstable one can take 1e4-1e5 (seed 163:
+  // 33856 steps, balance 1.4e-6 of the scale; 1.9e-7 at rtol 1e-11, 3e-8 at 1e-12: integration
+  // error, not a missing term), so it runs at rtol 1e-11 with a budget of 20000 steps
+  // (N rtol <= 2e-7; rtol 1e-12 is beyond what BDF holds in double precision: seed 129's step
+  // collapses at t = 2e-4 s). Where the budget runs out (the open-loop motion nears a singular
+  // configuration, seed 129 at rtol 1e-10: the step collapses to 1e-7 s at t = 0.025 s and dopri5
+  // reports a singular configuration at t = 0.022 s), the forward relations are skipped and
+  // counted. dopri5 at rtol 1e-10 stalls on some mechanisms (seed 15: more than 200000 steps
+  // where BDF needs 315; docs/testing.md).
+  const bool resolvable = amplification <= 1e2;
   ForwardResult fr;
   bool forward_ok = false;
-  if (!(amplification <= 1e2)) {
-    table.row("inverse -> forward round trip", kForward).skipped++;
+  std::string forward_error;
+  try {
+    fr = replay(env_double("MO2D_META_RTOL", resolvable ? 1e-10 : 1e-11), 1.0,
+                resolvable ? 100000 : 20000);
+    forward_ok = true;
+    if (verbose)
+      std::printf("  replay: amplification %g, %ld steps\n", amplification, fr.stats.steps);
+  } catch (const Error& e) {
+    forward_error = e.what();
+  }
+  if (!resolvable) {
+    table.skip("inverse -> forward round trip", kForward, "unstable replay (amplification > 1e2)");
   } else {
-    // CVODE BDF (the default integrator). dopri5 at rtol 1e-10 stalls on some mechanisms (seed
-    // 15: more than 200000 steps where BDF needs 315; see docs/testing.md).
     relation("inverse -> forward round trip", kForward, [&] {
-      fr = replay(1e-10, 1.0, 100000);
-      forward_ok = true;
+      if (!forward_ok) throw Error(forward_error);
       Deviation d = compare(observe(model, flat, fr), o, L, "p:");
       const Deviation dv = compare(observe(model, flat, fr), o, L, "v:");
       if (!(dv.worst <= d.worst)) d.worst = dv.worst, d.where = dv.where;
       d.checks += dv.checks;
       return d;
     });
+  }
+  if (!forward_ok && resolvable) {
+    const std::string why = "forward run failed: " + forward_error;
+    table.failure("forward energies = independent ones", kForward, mech, why);
+    table.failure("forward energy balance (all loads)", kForward, mech, why);
+  } else if (!forward_ok) {
+    const std::string why = "unstable replay ran out of its step budget";
+    table.skip("forward energies = independent ones", kForward, why);
+    table.skip("forward energy balance (all loads)", kForward, why);
+    if (verbose) std::printf("  %s\n", forward_error.c_str());
   }
   if (forward_ok) {
     relation("forward energies = independent ones", kForward, [&] {
@@ -574,55 +621,87 @@ void check_mechanism(const Mechanism& mech, Table& table) {
       }
       return d;
     });
-    // TODO(energy-branch): the forward energy balance ignores the work of point forces and
-    // torques (issue 10 item 6, fixed on the `energy` branch): with them, 32 of 47 mechanisms
-    // (seeds 1..60) fail by up to 1.5 of the energy scale. Widen to every mechanism after merging
-    // it (MO2D_META_ALL_LOADS=1 runs them now).
-    if (!mech.has_external_loads() || std::getenv("MO2D_META_ALL_LOADS"))
-      relation("forward energy balance", kForward, [&] {
-        const VectorXd E = fr.kinetic + fr.potential + fr.dissipated - fr.input_work;
-        double scale = 0;
-        for (int i = 0; i < E.size(); ++i)
-          scale =
-              std::max({scale, std::abs(fr.kinetic[i]), std::abs(fr.potential[i] - fr.potential[0]),
-                        std::abs(fr.input_work[i]), std::abs(fr.dissipated[i])});
-        Deviation d;
-        for (int i = 0; i < E.size(); ++i)
-          d.add(std::abs(E[i] - E[0]) / scale, "sample " + std::to_string(i));
-        return d;
-      });
-  }
-
-  // Box2D: mechanisms it can translate (no springs) and whose joints link bodies of comparable
-  // mass: Box2D's sequential impulses are documented to lose joints beyond mass ratios of about
-  // 10:1 (its manual); measured here, ratios of 2000 and more disagree by 3 % to 5e4 % (seeds 29,
-  // 49) and a ratio of 22 (seed 204) has a start transient longer than 300 steps, while every
-  // other relation holds on them. Ratios up to 10 are compared.
-  double mmin = INFINITY, mmax = 0;
-  for (const FlatBody& b : flat.bodies)
-    mmin = std::min(mmin, b.mass), mmax = std::max(mmax, b.mass);
-  if (mech.has_springs() || mmax > 10 * mmin) {
-    table.row("Box2D cross-check", 1.0).skipped++;
-  } else {
-    relation("Box2D cross-check", 1.0, [&] {
-      CrosscheckOptions c;
-      c.step = mech.time / 640;
-      // TODO(energy-branch): Box2D's warm start makes the first ~200 steps disagree by up to 20 %
-      // on mechanisms that start moving (issue 10 item 8; at h/4 the transient lasts as many
-      // steps, 4x shorter in time). The comparison starts after it (300 of the 1920 steps) until
-      // the energy branch fixes that false alarm; then restore the default skip_steps.
-      c.skip_steps = 300;
-      const CrosscheckReport r = crosscheck_inverse(sys, motion, {.t0 = 0, .t1 = mech.t1}, c);
+    // kinetic + potential (the independent functions of this file, not mo2d's) - the works of
+    // the inputs, loads and moving constraints + the dissipation, all integrated by the run, is
+    // constant; and so is mo2d's energy_balance(fr) (its own energies). On every mechanism, with
+    // every load.
+    relation("forward energy balance (all loads)", kForward, [&] {
+      std::vector<Energy> mine;
+      observe(model, flat, fr, &mine);
+      auto at = [](const VectorXd& v, int i) { return v.size() > i ? v[i] : 0.0; };
+      const VectorXd lib = energy_balance(fr);
+      double scale = 0;
+      for (int i = 0; i < fr.time.size(); ++i)
+        scale = std::max({scale, std::abs(mine[i].kinetic),
+                          std::abs(mine[i].potential - mine[0].potential),
+                          std::abs(at(fr.input_work, i)), std::abs(at(fr.load_work, i)),
+                          std::abs(at(fr.constraint_work, i)), std::abs(at(fr.dissipated, i))});
+      auto balance = [&](int i) {
+        return mine[i].kinetic + mine[i].potential - at(fr.input_work, i) - at(fr.load_work, i) -
+               at(fr.constraint_work, i) + at(fr.dissipated, i);
+      };
       Deviation d;
-      // deviation: the worst error over its tolerance (agreement <=> <= 1)
-      d.add(std::max({r.effort_rms / c.effort_rms_tolerance, r.effort_max / c.effort_max_tolerance,
-                      r.reaction_rms / c.reaction_rms_tolerance,
-                      r.reaction_max / c.reaction_max_tolerance}),
-            r.failures.empty() ? "agree" : r.failures.front());
-      d.checks = r.steps;
+      for (int i = 0; i < fr.time.size(); ++i) {
+        d.add(std::abs(balance(i) - balance(0)) / scale, "independent at " + std::to_string(i));
+        d.add(std::abs(lib[i] - lib[0]) / scale, "energy_balance() at " + std::to_string(i));
+      }
       return d;
     });
   }
+
+  // Box2D: mechanisms it can translate (no springs), with the library's default start (settling
+  // on the motion before t0) and feedback, the step scaled with the mechanism's time. Compared:
+  //  - mass ratios (largest body over the smallest) <= 10, as Box2D's manual asks (sequential
+  //    impulses lose accuracy beyond). Measured with settling: on seeds 1..300 every settled
+  //    mechanism up to a ratio of 50 agrees (worst 52 % of the tolerance), but on seeds
+  //    301..1300 ratios of 10.9 (seed 824, chain3: j2.torque RMS error 3.6 times its peak),
+  //    25 (seed 714: max 4.3 %) and 28 (seed 976: RMS error 2e3 times the peak) disagree while
+  //    every other relation (round trip included) holds on them: not resolved (docs/testing.md),
+  //    so the class stays at 10. Beyond: seed 262, ratio 88: 11 % RMS; 14 of 48 with ratios
+  //    50..1000 on seeds 1..300; seed 49, ratio 2200: effort RMS error 1.3e4 times its peak.
+  //  - Box2D settled before t0: where the motion cannot be solved before t0 (it leaves the
+  //    workspace just before the start), the cross-check starts cold and skips 10 steps; that
+  //    start is not what its tolerances were measured for (seed 204, ratio 22: 17 % RMS). Those
+  //    are skipped and counted.
+  // MO2D_META_BOX2D_RATIO overrides the ratio limit (to measure what happens beyond it).
+  double mmin = INFINITY, mmax = 0;
+  for (const FlatBody& b : flat.bodies)
+    mmin = std::min(mmin, b.mass), mmax = std::max(mmax, b.mass);
+  const double ratio_limit = env_double("MO2D_META_BOX2D_RATIO", kBox2dMassRatio);
+  const std::string box2d = "Box2D cross-check";
+  if (mech.has_springs()) {
+    table.skip(box2d, 1.0, "springs (Box2D has none)");
+    return;
+  }
+  if (mmax > ratio_limit * mmin) {
+    table.skip(box2d, 1.0, "mass ratio > limit");
+    return;
+  }
+  CrosscheckOptions c;  // the library's defaults, but the step
+  c.step = mech.time / 640;
+  CrosscheckReport r;
+  try {
+    r = crosscheck_inverse(sys, motion, {.t0 = 0, .t1 = mech.t1}, c);
+  } catch (const std::exception& e) {
+    table.failure(box2d, 1.0, mech, std::string("threw: ") + e.what());
+    return;
+  }
+  if (r.settle_steps == 0) {
+    table.skip(box2d, 1.0, "Box2D cannot settle (motion not solvable before t0)");
+    return;
+  }
+  Deviation d;
+  // deviation: the worst error over its tolerance (agreement <=> <= 1)
+  d.add(std::max({r.effort_rms / c.effort_rms_tolerance, r.effort_max / c.effort_max_tolerance,
+                  r.reaction_rms / c.reaction_rms_tolerance,
+                  r.reaction_max / c.reaction_max_tolerance}),
+        (r.failures.empty() ? "agree" : r.failures.front()) + ", mass ratio " +
+            std::to_string(mmax / mmin));
+  d.checks = r.compared_steps;
+  if (verbose)
+    std::printf("  Box2D: mass ratio %.3g, %d compared steps, deviation %.3g (%s)\n", mmax / mmin,
+                r.compared_steps, d.worst, d.where.c_str());
+  table.record(box2d, 1.0, mech, d);
 }
 
 }  // namespace
