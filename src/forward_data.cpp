@@ -435,8 +435,9 @@ void Recorder::record(double t, const VectorXd& q0, const VectorXd& q1, const do
   d.accelerations(t, q0, q1, d.o.integrator == Integrator::baumgarte);
   r.a1.row(k) = d.a.transpose();
   d.compute_reactions(t, q0, q1);
-  r.reactions.row(k) = d.reactions.transpose();
-  r.efforts.row(k) = d.u.transpose();
+  // (a row of a matrix with no columns is an offset from Eigen's null data pointer: skipped)
+  if (r.reactions.cols() > 0) r.reactions.row(k) = d.reactions.transpose();
+  if (r.efforts.cols() > 0) r.efforts.row(k) = d.u.transpose();
   r.kinetic[k] = kinetic_energy(m, q1);
   r.potential[k] = potential_energy(m, q0);
   r.input_work[k] = energies[kInputWork];

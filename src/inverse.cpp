@@ -568,8 +568,8 @@ InverseResult inverse_dynamics(const Model& m, std::span<const Prescribed> presc
     r.q0.row(k) = d.q0.transpose();
     r.q1.row(k) = d.q1.transpose();
     r.a1.row(k) = d.a1.transpose();
-    r.efforts.row(k) = d.u.transpose();
-    r.reactions.row(k) = d.reactions.transpose();
+    if (r.efforts.cols() > 0) r.efforts.row(k) = d.u.transpose();  // no row of a 0-column matrix
+    if (r.reactions.cols() > 0) r.reactions.row(k) = d.reactions.transpose();
     r.residuals.row(k) << d.residual_position, d.residual_velocity, d.residual_acceleration;
   }
   finish_inverse_warnings(d);

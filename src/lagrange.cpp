@@ -57,7 +57,7 @@ InverseResult inverse_dynamics_lagrange(const Model& m, std::span<const Prescrib
     r.q0.row(k) = d.q0.transpose();
     r.q1.row(k) = d.q1.transpose();
     r.a1.row(k) = x.head(n1).transpose();
-    r.efforts.row(k) = x.tail(nu).transpose();
+    if (nu > 0) r.efforts.row(k) = x.tail(nu).transpose();  // no row of a 0-column matrix
     for (int j = 0; j < m.n_reactions(); ++j)
       r.reactions(k, j) = m.reactions[j].factor * lambda[m.reactions[j].row];
     r.residuals.row(k) << d.residual_position, (A * d.q1 - bb).lpNorm<Eigen::Infinity>(),
