@@ -13,6 +13,7 @@
 #include "mo2d/mechanisms.hpp"
 #include "mo2d/model.hpp"
 #include "mo2d/scene.hpp"
+#include "test_support.hpp"
 
 namespace mo2d {
 namespace {
@@ -306,16 +307,7 @@ TEST(Joints, VelocityFixedByTheConstraintsIsNamed) {
 
 // A configuration where the constraints themselves lose rank is called singular.
 TEST(Joints, SingularConfigurationIsCalledSingular) {
-  System s("flat");
-  s.add_ground_node("A0", {0, 0}).add_ground_node("B0", {1, 0});
-  s.add_body({.name = "crank", .nodes = {{"O", {0, 0}}, {"A", {1, 0}}}, .mass = 1, .inertia = 1});
-  s.add_body({.name = "coupler", .nodes = {{"A", {1, 0}}, {"B", {2, 0}}}, .mass = 1, .inertia = 1});
-  s.add_body({.name = "rocker", .nodes = {{"O", {1, 0}}, {"B", {2, 0}}}, .mass = 1, .inertia = 1});
-  s.add_revolute({.name = "p1", .node_a = "ground.A0", .node_b = "crank.O"});
-  s.add_revolute({.name = "p2", .node_a = "crank.A", .node_b = "coupler.A"});
-  s.add_revolute({.name = "p3", .node_a = "coupler.B", .node_b = "rocker.B"});
-  s.add_revolute({.name = "p4", .node_a = "ground.B0", .node_b = "rocker.O"});
-  const Model m = build_model(s, {.assemble = false});
+  const Model m = build_model(test::flat_parallelogram(), {.assemble = false});
   expect_contains(state_error(m, {.positions = {}, .velocities = {{"crank.w", 1}}}),
                   {"configuration is singular", "lose rank"});
 }

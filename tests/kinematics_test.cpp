@@ -9,6 +9,7 @@
 
 #include "mo2d/mechanisms.hpp"
 #include "mo2d/mo2d.hpp"
+#include "test_support.hpp"
 
 using namespace mo2d;
 
@@ -108,23 +109,14 @@ TEST(Kinematics, AssemblyStaysOnTheNearestBranch) {
 TEST(Kinematics, ConditioningReportsRankLossOfAFlatParallelogram) {
   // Parallelogram lying flat: ground, crank, coupler, rocker all on the x axis. The constraint
   // Jacobian loses rank there (the DOF jumps from 1 to 2).
-  System s("flat");
-  s.add_ground_node("A0", {0, 0}).add_ground_node("B0", {1, 0});
-  s.add_body({.name = "crank", .nodes = {{"O", {0, 0}}, {"A", {1, 0}}}, .mass = 1, .inertia = 1});
-  s.add_body({.name = "coupler", .nodes = {{"A", {1, 0}}, {"B", {2, 0}}}, .mass = 1, .inertia = 1});
-  s.add_body({.name = "rocker", .nodes = {{"O", {1, 0}}, {"B", {2, 0}}}, .mass = 1, .inertia = 1});
-  s.add_revolute({.name = "p1", .node_a = "ground.A0", .node_b = "crank.O"});
-  s.add_revolute({.name = "p2", .node_a = "crank.A", .node_b = "coupler.A"});
-  s.add_revolute({.name = "p3", .node_a = "coupler.B", .node_b = "rocker.B"});
-  s.add_revolute({.name = "p4", .node_a = "ground.B0", .node_b = "rocker.O"});
-  const Model m = build_model(s, {.assemble = false});
+  const Model m = build_model(test::flat_parallelogram(), {.assemble = false});
   const Conditioning c = velocity_conditioning(m, m.q0);
   EXPECT_EQ(c.rank, m.m1 - 1);
   EXPECT_TRUE(std::isinf(c.condition) || c.condition > 1e12);
   EXPECT_EQ(degrees_of_freedom(m, m.q0).velocity, 2);
   // and building it with the checks on says so, naming a row
   try {
-    build_model(s);
+    build_model(test::flat_parallelogram());
     ADD_FAILURE() << "expected an Error";
   } catch (const Error& e) {
     EXPECT_NE(std::string(e.what()).find("redundant"), std::string::npos) << e.what();

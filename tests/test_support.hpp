@@ -146,4 +146,19 @@ inline double max_relative_difference(const Eigen::MatrixXd& a, const Eigen::Mat
   return worst;
 }
 
+// A parallelogram four-bar lying flat (ground, crank, coupler and rocker on the x axis, unit
+// links): the constraint Jacobian loses rank there (the DOF jumps from 1 to 2). Not assembled.
+inline System flat_parallelogram() {
+  System s("flat");
+  s.add_ground_node("A0", {0, 0}).add_ground_node("B0", {1, 0});
+  s.add_body({.name = "crank", .nodes = {{"O", {0, 0}}, {"A", {1, 0}}}, .mass = 1, .inertia = 1});
+  s.add_body({.name = "coupler", .nodes = {{"A", {1, 0}}, {"B", {2, 0}}}, .mass = 1, .inertia = 1});
+  s.add_body({.name = "rocker", .nodes = {{"O", {1, 0}}, {"B", {2, 0}}}, .mass = 1, .inertia = 1});
+  s.add_revolute({.name = "p1", .node_a = "ground.A0", .node_b = "crank.O"});
+  s.add_revolute({.name = "p2", .node_a = "crank.A", .node_b = "coupler.A"});
+  s.add_revolute({.name = "p3", .node_a = "coupler.B", .node_b = "rocker.B"});
+  s.add_revolute({.name = "p4", .node_a = "ground.B0", .node_b = "rocker.O"});
+  return s;
+}
+
 }  // namespace mo2d::test
