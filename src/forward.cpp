@@ -52,10 +52,13 @@ using detail::ForwardData;
 using detail::Recorder;
 
 void detail::check_finite_sample(const Model& m, const ForwardResult& r, int k) {
-  if (r.q0.row(k).allFinite() && r.q1.row(k).allFinite() && r.a1.row(k).allFinite() &&
-      r.efforts.row(k).allFinite() && r.reactions.row(k).allFinite() &&
-      r.residuals.row(k).allFinite() && std::isfinite(r.kinetic[k]) &&
+  // (a row of a matrix with no columns, e.g. the efforts of a mechanism without inputs, would be
+  // an offset from Eigen's null data pointer: such a row is finite)
+  auto row_finite = [k](const MatrixXd& x) { return x.cols() == 0 || x.row(k).allFinite(); };
+  if (row_finite(r.q0) && row_finite(r.q1) && row_finite(r.a1) && row_finite(r.efforts) &&
+      row_finite(r.reactions) && row_finite(r.residuals) && std::isfinite(r.kinetic[k]) &&
       std::isfinite(r.potential[k]) && std::isfinite(r.input_work[k]) &&
+      std::isfinite(r.load_work[k]) && std::isfinite(r.constraint_work[k]) &&
       std::isfinite(r.dissipated[k]))
     return;
   std::string names;
@@ -75,6 +78,8 @@ void detail::check_finite_sample(const Model& m, const ForwardResult& r, int k) 
   add(r.kinetic[k], "energy.kinetic");
   add(r.potential[k], "energy.potential");
   add(r.input_work[k], "work.inputs");
+  add(r.load_work[k], "work.loads");
+  add(r.constraint_work[k], "work.constraints");
   add(r.dissipated[k], "energy.dissipated");
   add(r.residuals(k, 0), "residual.position");
   add(r.residuals(k, 1), "residual.velocity");
