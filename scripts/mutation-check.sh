@@ -1,10 +1,12 @@
 #!/usr/bin/env bash
 # Mutation check: apply deliberate bugs to a copy of the sources, rebuild, run the test suite and
 # list which tests catch each one. A mutation that no test catches is a hole in the suite.
-# Usage: scripts/mutation-check.sh [WORKDIR]   (default /tmp/mo2d-mutations)
+# Usage: scripts/mutation-check.sh [WORKDIR [FILTER]]   (default /tmp/mo2d-mutations; FILTER: an
+# extended regular expression: only the mutations whose name matches it)
 set -euo pipefail
 src=$(cd "$(dirname "$0")/.." && pwd)
 work=${1:-/tmp/mo2d-mutations}
+filter=${2:-}
 # a fresh copy and a fresh build every time: tar restores the sources' old mtimes, so a build
 # directory kept from an earlier run would reuse objects compiled from mutated sources
 rm -rf "$work"
@@ -36,6 +38,7 @@ mutations=(
 status=0
 for entry in "${mutations[@]}"; do
   IFS='|' read -r name file expr <<<"$entry"
+  if [[ -n "$filter" ]] && ! grep -Eq -- "$filter" <<<"$name"; then continue; fi
   cp "$file" "$file.orig"
   sed -i "$expr" "$file"
   if cmp -s "$file" "$file.orig"; then

@@ -11,6 +11,7 @@
 #include "mo2d/dynamics.hpp"
 #include "mo2d/error.hpp"
 #include "mo2d/kinematics.hpp"
+#include "result_rows.hpp"
 
 namespace mo2d::detail {
 
@@ -430,14 +431,13 @@ void Recorder::record(double t, const VectorXd& q0, const VectorXd& q1, const do
   check_unprojected();
   if (d.o.progress) d.o.progress(t);
   r.time[k] = t;
-  r.q0.row(k) = q0.transpose();
-  r.q1.row(k) = q1.transpose();
+  set_row(r.q0, k, q0);
+  set_row(r.q1, k, q1);
   d.accelerations(t, q0, q1, d.o.integrator == Integrator::baumgarte);
-  r.a1.row(k) = d.a.transpose();
+  set_row(r.a1, k, d.a);
   d.compute_reactions(t, q0, q1);
-  // (a row of a matrix with no columns is an offset from Eigen's null data pointer: skipped)
-  if (r.reactions.cols() > 0) r.reactions.row(k) = d.reactions.transpose();
-  if (r.efforts.cols() > 0) r.efforts.row(k) = d.u.transpose();
+  set_row(r.reactions, k, d.reactions);
+  set_row(r.efforts, k, d.u);
   r.kinetic[k] = kinetic_energy(m, q1);
   r.potential[k] = potential_energy(m, q0);
   r.input_work[k] = energies[kInputWork];

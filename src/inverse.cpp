@@ -15,6 +15,7 @@
 #include "mo2d/error.hpp"
 #include "mo2d/kinematics.hpp"
 #include "mo2d/suggest.hpp"
+#include "result_rows.hpp"
 #include "run_budget.hpp"
 
 namespace mo2d {
@@ -565,11 +566,11 @@ InverseResult inverse_dynamics(const Model& m, std::span<const Prescribed> presc
     budget.check(t, k, 0);
     inverse_dynamics_sample(m, d, t);
     r.time[k] = t;
-    r.q0.row(k) = d.q0.transpose();
-    r.q1.row(k) = d.q1.transpose();
-    r.a1.row(k) = d.a1.transpose();
-    if (r.efforts.cols() > 0) r.efforts.row(k) = d.u.transpose();  // no row of a 0-column matrix
-    if (r.reactions.cols() > 0) r.reactions.row(k) = d.reactions.transpose();
+    detail::set_row(r.q0, k, d.q0);
+    detail::set_row(r.q1, k, d.q1);
+    detail::set_row(r.a1, k, d.a1);
+    detail::set_row(r.efforts, k, d.u);
+    detail::set_row(r.reactions, k, d.reactions);
     r.residuals.row(k) << d.residual_position, d.residual_velocity, d.residual_acceleration;
   }
   finish_inverse_warnings(d);

@@ -7,6 +7,7 @@
 #include "mo2d/dynamics.hpp"
 #include "mo2d/error.hpp"
 #include "mo2d/kinematics.hpp"
+#include "result_rows.hpp"
 
 namespace mo2d {
 
@@ -54,10 +55,10 @@ InverseResult inverse_dynamics_lagrange(const Model& m, std::span<const Prescrib
     const VectorXd x = lu.solve(rhs);
     const VectorXd lambda = x.segment(n1, m1);
     r.time[k] = t;
-    r.q0.row(k) = d.q0.transpose();
-    r.q1.row(k) = d.q1.transpose();
-    r.a1.row(k) = x.head(n1).transpose();
-    if (nu > 0) r.efforts.row(k) = x.tail(nu).transpose();  // no row of a 0-column matrix
+    detail::set_row(r.q0, k, d.q0);
+    detail::set_row(r.q1, k, d.q1);
+    detail::set_row(r.a1, k, x.head(n1));
+    detail::set_row(r.efforts, k, x.tail(nu));
     for (int j = 0; j < m.n_reactions(); ++j)
       r.reactions(k, j) = m.reactions[j].factor * lambda[m.reactions[j].row];
     r.residuals.row(k) << d.residual_position, (A * d.q1 - bb).lpNorm<Eigen::Infinity>(),
