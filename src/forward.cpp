@@ -274,6 +274,10 @@ void check_forward_options(const Model& m, const ForwardOptions& o) {
 
 ForwardResult forward_dynamics(const Model& m, const State& initial, const ForwardOptions& o) {
   check_forward_options(m, o);
+  if (m.n1 == 0)  // nothing to integrate (a scene without bodies, or every body fixed)
+    throw Error("forward dynamics of '" + m.name +
+                    "': the mechanism has no moving parts (no quasi-velocities)",
+                m.name);
   if (initial.q0.size() != m.n0 || initial.q1.size() != m.n1)
     throw Error("forward dynamics: the initial state does not match the model's variables", m.name);
   ForwardData d(m, o);

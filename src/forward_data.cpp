@@ -53,8 +53,9 @@ ForwardData::ForwardData(const Model& model, const ForwardOptions& opt) : m(mode
     // on the dimensionless D M D (D = col_scale): the test does not depend on units or size
     Eigen::LLT<MatrixXd> llt_M(col_scale.asDiagonal() * M * col_scale.asDiagonal());
     const auto d = llt_M.matrixLLT().diagonal();
-    // M positive definite and not nearly singular (a massless body makes it singular)
-    has_Minv = llt_M.info() == Eigen::Success && d.minCoeff() > 1e-6 * d.maxCoeff();
+    // M positive definite and not nearly singular (a massless body makes it singular); a model
+    // without quasi-velocities has an empty M (and no minCoeff)
+    has_Minv = llt_M.info() == Eigen::Success && (m.n1 == 0 || d.minCoeff() > 1e-6 * d.maxCoeff());
     if (has_Minv)  // M^-1 = D (D M D)^-1 D
       Minv = col_scale.asDiagonal() * llt_M.solve(MatrixXd::Identity(m.n1, m.n1)) *
              col_scale.asDiagonal();

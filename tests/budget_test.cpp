@@ -343,5 +343,20 @@ TEST(RunGuards, OutputSetLandsAllFilesOrNone) {
   std::filesystem::remove_all(dir);
 }
 
+// A model without quasi-velocities (a scene without bodies: found by the run fuzzer, which made
+// ForwardData take the smallest pivot of an empty mass matrix and crash) is refused by name.
+TEST(RunGuards, ForwardDynamicsOfNothingIsRefused) {
+  const Scene scene =
+      parse_scene("run: {solve: forward, duration: 1, samples: 11}\n", "empty.yaml");
+  const Model model = build_scene_model(scene);
+  ASSERT_EQ(model.n1, 0);
+  try {
+    forward_dynamics(model, State{0, model.q0, VectorXd::Zero(0)}, forward_options(scene, model));
+    ADD_FAILURE() << "expected an Error";
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("no moving parts"), std::string::npos) << e.what();
+  }
+}
+
 }  // namespace
 }  // namespace mo2d
