@@ -19,12 +19,8 @@ int main(int argc, char** argv) {
   app.require_subcommand(0, 1);
   app.fallthrough(false);
   const std::vector<Command> commands = {
-      add_demo_command(app),
-      add_info_command(app),
-      add_inverse_command(app),
-      add_forward_command(app),
-      add_render_command(app),
-      add_crosscheck_command(app),
+      add_demo_command(app),    add_info_command(app),   add_inverse_command(app),
+      add_forward_command(app), add_render_command(app), add_crosscheck_command(app),
   };
   try {
     app.parse(argc, argv);

@@ -1,7 +1,8 @@
 // Forward-dynamics benchmarks (Google Benchmark): one second of the IFToMM double four-bar and of
 // the four-bar under gravity with each explicit integrator and CVODE BDF. The model and the initial
 // state are built outside the timed loop. Counters: "s/step" and "s/eval" (CPU time per accepted
-// step and per evaluation of the accelerations, seconds with an SI prefix). See docs/performance.md.
+// step and per evaluation of the accelerations, seconds with an SI prefix). See
+// docs/performance.md.
 #include <benchmark/benchmark.h>
 
 #include "mo2d/forward.hpp"
@@ -52,14 +53,14 @@ const ForwardOptions kRk4{.integrator = Integrator::rk4, .step = 4e-3};
 const ForwardOptions kDopri5{.integrator = Integrator::dopri5, .rtol = 1e-9, .atol = 1e-9};
 const ForwardOptions kBdf{.integrator = Integrator::cvode_bdf, .rtol = 1e-8, .atol = 1e-8};
 
-BENCHMARK_CAPTURE(BM_Forward, double_fourbar_rk4_h4e-3, &double_fourbar, kRk4)
+BENCHMARK_CAPTURE(BM_Forward, double_fourbar_rk4_h4e - 3, &double_fourbar, kRk4)
     ->Unit(benchmark::kMillisecond);
-BENCHMARK_CAPTURE(BM_Forward, double_fourbar_dopri5_tol1e-9, &double_fourbar, kDopri5)
+BENCHMARK_CAPTURE(BM_Forward, double_fourbar_dopri5_tol1e - 9, &double_fourbar, kDopri5)
     ->Unit(benchmark::kMillisecond);
-BENCHMARK_CAPTURE(BM_Forward, double_fourbar_bdf_tol1e-8, &double_fourbar, kBdf)
+BENCHMARK_CAPTURE(BM_Forward, double_fourbar_bdf_tol1e - 8, &double_fourbar, kBdf)
     ->Unit(benchmark::kMillisecond);
-BENCHMARK_CAPTURE(BM_Forward, fourbar_rk4_h4e-3, &fourbar, kRk4)->Unit(benchmark::kMillisecond);
-BENCHMARK_CAPTURE(BM_Forward, fourbar_dopri5_tol1e-9, &fourbar, kDopri5)
+BENCHMARK_CAPTURE(BM_Forward, fourbar_rk4_h4e - 3, &fourbar, kRk4)->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(BM_Forward, fourbar_dopri5_tol1e - 9, &fourbar, kDopri5)
     ->Unit(benchmark::kMillisecond);
 
 }  // namespace

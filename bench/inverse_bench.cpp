@@ -73,7 +73,8 @@ void BM_BuildModel(benchmark::State& state, Factory make) {
 
 }  // namespace
 
-BENCHMARK_CAPTURE(BM_Sample, whitworth, &mo2d::mechanisms::whitworth)->Unit(benchmark::kMicrosecond);
+BENCHMARK_CAPTURE(BM_Sample, whitworth, &mo2d::mechanisms::whitworth)
+    ->Unit(benchmark::kMicrosecond);
 BENCHMARK_CAPTURE(BM_Sample, rrr3, &mo2d::mechanisms::rrr3)->Unit(benchmark::kMicrosecond);
 BENCHMARK_CAPTURE(BM_Run, whitworth, &mo2d::mechanisms::whitworth)->Unit(benchmark::kMillisecond);
 BENCHMARK_CAPTURE(BM_Run, rrr3, &mo2d::mechanisms::rrr3)->Unit(benchmark::kMillisecond);

@@ -19,7 +19,9 @@ int main() {
   const State st = consistent_state(m, {.positions = {}, .velocities = {{"crank0.w", -1.0}}});
   const double rx = 0.328458111541, ry = 0.944518538179;
   const int ix = m.coordinate("crank0.B.x"), iy = m.coordinate("crank0.B.y");
-  std::printf("| integrator | setting | B0(10 s) | error vs reference | steps | evaluations | CPU ms | max residual | max energy error (J) |\n");
+  std::printf(
+      "| integrator | setting | B0(10 s) | error vs reference | steps | evaluations | CPU ms | max "
+      "residual | max energy error (J) |\n");
   std::printf("|---|---|---|---|---|---|---|---|---|\n");
   auto row = [&](ForwardOptions o, const std::string& setting) {
     o.t0 = 0;
@@ -35,8 +37,8 @@ int main() {
                   r.stats.rhs_evaluations, 1e3 * r.stats.cpu_seconds, r.residuals.maxCoeff(),
                   (E.array() - E[0]).abs().maxCoeff());
     } catch (const std::exception& e) {
-      std::printf("| %s | %s | failed: %s | | | | | | |\n", to_string(o.integrator), setting.c_str(),
-                  e.what());
+      std::printf("| %s | %s | failed: %s | | | | | | |\n", to_string(o.integrator),
+                  setting.c_str(), e.what());
     }
   };
   auto g = [](const char* prefix, double v) {
@@ -44,12 +46,14 @@ int main() {
     std::snprintf(buf, sizeof buf, "%s%g", prefix, v);
     return std::string(buf);
   };
-  for (double h : {4e-3, 2e-3, 1e-3, 1e-4}) row({.integrator = Integrator::rk4, .step = h}, g("h = ", h));
+  for (double h : {4e-3, 2e-3, 1e-3, 1e-4})
+    row({.integrator = Integrator::rk4, .step = h}, g("h = ", h));
   for (double tol : {1e-7, 1e-8, 3e-9, 1e-9})
     row({.integrator = Integrator::dopri5, .rtol = tol, .atol = tol}, g("tol ", tol));
   for (double tol : {1e-6, 1e-8, 1e-10})
     row({.integrator = Integrator::cvode_bdf, .rtol = tol, .atol = tol}, g("tol ", tol));
-  row({.integrator = Integrator::cvode_adams, .rtol = 1e-8, .atol = 1e-8}, "tol 1e-8, no projection");
+  row({.integrator = Integrator::cvode_adams, .rtol = 1e-8, .atol = 1e-8},
+      "tol 1e-8, no projection");
   row({.integrator = Integrator::baumgarte, .step = 1e-3}, "h = 1e-3, alpha 20/s");
   return 0;
 }

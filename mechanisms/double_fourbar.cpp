@@ -13,18 +13,25 @@ System double_fourbar() {
   const std::string pivot[3] = {"O0", "O1", "O2"};
   for (int k = 0; k < 3; ++k) {
     s.add_ground_node(pivot[k], {double(k), 0.0});
-    s.add_body({.name = crank[k], .nodes = {{"O", {double(k), 0.0}}, {"B", {double(k), L}}},
-                .mass = m, .inertia = I, .com = CenterOfMass::between("O", "B", 0.5)});
-    s.add_revolute({.name = crank[k] + "_pivot", .node_a = "ground." + pivot[k],
-                    .node_b = crank[k] + ".O"});
+    s.add_body({.name = crank[k],
+                .nodes = {{"O", {double(k), 0.0}}, {"B", {double(k), L}}},
+                .mass = m,
+                .inertia = I,
+                .com = CenterOfMass::between("O", "B", 0.5)});
+    s.add_revolute(
+        {.name = crank[k] + "_pivot", .node_a = "ground." + pivot[k], .node_b = crank[k] + ".O"});
   }
   const std::string coupler[2] = {"coupler1", "coupler2"};
   for (int k = 0; k < 2; ++k) {
-    s.add_body({.name = coupler[k], .nodes = {{"A", {double(k), L}}, {"B", {double(k + 1), L}}},
-                .mass = m, .inertia = I, .com = CenterOfMass::between("A", "B", 0.5)});
-    s.add_revolute({.name = coupler[k] + "_left", .node_a = crank[k] + ".B",
-                    .node_b = coupler[k] + ".A"});
-    s.add_revolute({.name = coupler[k] + "_right", .node_a = crank[k + 1] + ".B",
+    s.add_body({.name = coupler[k],
+                .nodes = {{"A", {double(k), L}}, {"B", {double(k + 1), L}}},
+                .mass = m,
+                .inertia = I,
+                .com = CenterOfMass::between("A", "B", 0.5)});
+    s.add_revolute(
+        {.name = coupler[k] + "_left", .node_a = crank[k] + ".B", .node_b = coupler[k] + ".A"});
+    s.add_revolute({.name = coupler[k] + "_right",
+                    .node_a = crank[k + 1] + ".B",
                     .node_b = coupler[k] + ".B"});
   }
   s.set_gravity({0, -9.81});

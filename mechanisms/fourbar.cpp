@@ -19,14 +19,23 @@ Example fourbar() {
 
   System s("fourbar");
   s.add_ground_node("A0", A0).add_ground_node("B0", B0);
-  s.add_body({.name = "crank", .nodes = {{"O", A0}, {"A", A}}, .mass = 0.2,
-              .inertia = 0.2 * a * a / 12, .com = CenterOfMass::between("O", "A", 0.5)});
-  s.add_body({.name = "coupler", .nodes = {{"A", A}, {"B", B}}, .mass = 0.5,
-              .inertia = 0.5 * b * b / 12, .com = CenterOfMass::between("A", "B", 0.5)});
-  s.add_body({.name = "rocker", .nodes = {{"O", B0}, {"B", B}}, .mass = 0.4,
-              .inertia = 0.4 * c * c / 12, .com = CenterOfMass::between("O", "B", 0.5)});
-  s.add_revolute({.name = "crank_pivot", .node_a = "ground.A0", .node_b = "crank.O",
-                  .actuated = true});
+  s.add_body({.name = "crank",
+              .nodes = {{"O", A0}, {"A", A}},
+              .mass = 0.2,
+              .inertia = 0.2 * a * a / 12,
+              .com = CenterOfMass::between("O", "A", 0.5)});
+  s.add_body({.name = "coupler",
+              .nodes = {{"A", A}, {"B", B}},
+              .mass = 0.5,
+              .inertia = 0.5 * b * b / 12,
+              .com = CenterOfMass::between("A", "B", 0.5)});
+  s.add_body({.name = "rocker",
+              .nodes = {{"O", B0}, {"B", B}},
+              .mass = 0.4,
+              .inertia = 0.4 * c * c / 12,
+              .com = CenterOfMass::between("O", "B", 0.5)});
+  s.add_revolute(
+      {.name = "crank_pivot", .node_a = "ground.A0", .node_b = "crank.O", .actuated = true});
   s.add_revolute({.name = "crank_pin", .node_a = "crank.A", .node_b = "coupler.A"});
   s.add_revolute({.name = "rocker_pin", .node_a = "coupler.B", .node_b = "rocker.B"});
   s.add_revolute({.name = "rocker_pivot", .node_a = "ground.B0", .node_b = "rocker.O"});
@@ -34,7 +43,8 @@ Example fourbar() {
   s.set_gravity({0, -9.81});
 
   Example e{std::move(s), {}, {}};
-  e.motion.push_back({"crank.angle", [](Jet t) { return std::numbers::pi / 2 + 2 * std::numbers::pi * t; }});
+  e.motion.push_back(
+      {"crank.angle", [](Jet t) { return std::numbers::pi / 2 + 2 * std::numbers::pi * t; }});
   e.run.t0 = 0;
   e.run.t1 = 2;
   e.run.samples = 401;

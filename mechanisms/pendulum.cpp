@@ -10,7 +10,10 @@ Example pendulum(const PendulumParams& p) {
   System s("pendulum");
   const Vec2 tip(p.L * std::cos(p.theta0), p.L * std::sin(p.theta0));
   s.add_ground_node("O", {0, 0});
-  s.add_body({.name = "link", .nodes = {{"O", {0, 0}}, {"P", tip}}, .mass = p.m, .inertia = 0.0,
+  s.add_body({.name = "link",
+              .nodes = {{"O", {0, 0}}, {"P", tip}},
+              .mass = p.m,
+              .inertia = 0.0,
               .com = CenterOfMass::at_node("P")});
   s.add_revolute({.name = "pivot", .node_a = "ground.O", .node_b = "link.O", .actuated = true});
   s.add_coordinate({.name = "link.angle", .rate = {{"link.w", 1.0}}});

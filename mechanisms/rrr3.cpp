@@ -23,8 +23,8 @@ System rrr3_leg() {
                 .mass = 0.5,
                 .inertia = 1.0 / 6.0,
                 .com = CenterOfMass::between("P", "E", 0.5)});
-  leg.add_revolute({.name = "pivot", .node_a = "ground.O", .node_b = "proximal.O",
-                    .actuated = true});
+  leg.add_revolute(
+      {.name = "pivot", .node_a = "ground.O", .node_b = "proximal.O", .actuated = true});
   leg.add_revolute({.name = "elbow", .node_a = "proximal.E", .node_b = "distal.E"});
   return leg;
 }
@@ -54,7 +54,8 @@ Example rrr3() {
   const double pi = std::numbers::pi;
   e.motion.push_back({"platform.C.x", [pi](Jet t) { return -sin((pi / 2) * t); }});
   e.motion.push_back({"platform.C.y", [pi](Jet t) { return sin((pi / 4) * t); }});
-  e.motion.push_back({"platform.angle", [pi](Jet t) { return (pi / 6) * pow(sin((pi / 4) * t), 4); }});
+  e.motion.push_back(
+      {"platform.angle", [pi](Jet t) { return (pi / 6) * pow(sin((pi / 4) * t), 4); }});
   e.run.t0 = 0;
   e.run.t1 = 16;
   e.run.samples = 501;

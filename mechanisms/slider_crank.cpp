@@ -20,12 +20,12 @@ Example slider_crank(const SliderCrankParams& p) {
               .inertia = p.m_rod * p.L * p.L / 12,
               .com = CenterOfMass::between("A", "B", 0.5)});
   s.add_body({.name = "slider", .nodes = {{"B", {xb, p.e}}}, .mass = p.m_slider});
-  s.add_revolute({.name = "crank_pivot", .node_a = "ground.O", .node_b = "crank.O",
-                  .actuated = true});
+  s.add_revolute(
+      {.name = "crank_pivot", .node_a = "ground.O", .node_b = "crank.O", .actuated = true});
   s.add_revolute({.name = "crank_pin", .node_a = "crank.A", .node_b = "rod.A"});
   s.add_revolute({.name = "wrist_pin", .node_a = "rod.B", .node_b = "slider.B"});
-  s.add_prismatic({.name = "rail", .axis_from = "ground.R1", .axis_to = "ground.R2",
-                   .slider = "slider.B"});
+  s.add_prismatic(
+      {.name = "rail", .axis_from = "ground.R1", .axis_to = "ground.R2", .slider = "slider.B"});
   s.add_coordinate({.name = "crank.angle", .rate = {{"crank.w", 1.0}}});
   s.set_gravity({0, -p.gravity});
 

@@ -10,9 +10,9 @@ namespace mo2d::mechanisms {
 
 Example whitworth() {
   System s("whitworth");
-  s.add_ground_node("O1", {0.0, 0.0})     // lever pivot
-      .add_ground_node("O2", {0.0, 0.3})  // crank pivot
-      .add_ground_node("S1", {0.0, 0.8})  // slide axis from S1 ...
+  s.add_ground_node("O1", {0.0, 0.0})        // lever pivot
+      .add_ground_node("O2", {0.0, 0.3})     // crank pivot
+      .add_ground_node("S1", {0.0, 0.8})     // slide axis from S1 ...
       .add_ground_node("S2", {0.001, 0.8});  // ... towards S2
 
   s.add_body({.name = "slider", .nodes = {{"P", {0.8, 0.8}}}, .mass = 1.0, .inertia = 0.0});
@@ -32,15 +32,15 @@ Example whitworth() {
               .inertia = 0.2 * 0.1 * 0.1 / 3,
               .com = CenterOfMass::at_node("O")});
 
-  s.add_prismatic({.name = "slide", .axis_from = "ground.S1", .axis_to = "ground.S2",
-                   .slider = "slider.P"});
+  s.add_prismatic(
+      {.name = "slide", .axis_from = "ground.S1", .axis_to = "ground.S2", .slider = "slider.P"});
   s.add_revolute({.name = "rod_slider", .node_a = "slider.P", .node_b = "rod.A"});
   s.add_revolute({.name = "rod_lever", .node_a = "rod.B", .node_b = "lever.B"});
   s.add_revolute({.name = "lever_pivot", .node_a = "ground.O1", .node_b = "lever.O"});
-  s.add_revolute({.name = "crank_pivot", .node_a = "ground.O2", .node_b = "crank.O",
-                  .actuated = true});
-  s.add_pin_in_slot({.name = "crank_pin", .axis_from = "lever.O", .axis_to = "lever.B",
-                     .pin = "crank.A"});
+  s.add_revolute(
+      {.name = "crank_pivot", .node_a = "ground.O2", .node_b = "crank.O", .actuated = true});
+  s.add_pin_in_slot(
+      {.name = "crank_pin", .axis_from = "lever.O", .axis_to = "lever.B", .pin = "crank.A"});
   // Mo2DPack's AddCoordinate: d/dt crank.angle = crank.w, starting at 0
   s.add_coordinate({.name = "crank.angle", .rate = {{"crank.w", 1.0}}, .initial = 0.0});
 

@@ -29,10 +29,16 @@ constexpr int kMaxUserArgs = 32;
 inline double wrap_angle(double a) {
   return a - 2 * std::numbers::pi * std::round(a / (2 * std::numbers::pi));
 }
-inline Vec2 perp(const Vec2& v) { return {-v.y(), v.x()}; }  // z x v
+inline Vec2 perp(const Vec2& v) {
+  return {-v.y(), v.x()};
+}  // z x v
 
-inline VarRef ref_x(const NodeRef& n) { return {n.var, n.body, 2 * n.local}; }
-inline VarRef ref_y(const NodeRef& n) { return {n.var < 0 ? -1 : n.var + 1, n.body, 2 * n.local + 1}; }
+inline VarRef ref_x(const NodeRef& n) {
+  return {n.var, n.body, 2 * n.local};
+}
+inline VarRef ref_y(const NodeRef& n) {
+  return {n.var < 0 ? -1 : n.var + 1, n.body, 2 * n.local + 1};
+}
 inline VarRef ref_w(const Model& m, const OmegaRef& w) {
   if (w.body < 0) return {-1, -1, -1};
   return {w.var, w.body, m.bodies[w.body].slots() - 1};
@@ -296,9 +302,9 @@ inline void acceleration_rows(const Model& m, const Constraint& c,
       const int nx = static_cast<int>(c.args.size()), nv = static_cast<int>(c.rates.size());
       for (int k = 0; k < nx; ++k) x[k] = Jet(q0[c.args[k].var], q1[c.args[k].var], 0);
       for (int k = 0; k < nv; ++k) v[k] = Jet(c.rates[k].var < 0 ? 0.0 : q1[c.rates[k].var]);
-      rhs[r] = -c.g(std::span<const Jet>(x.data(), nx), std::span<const Jet>(v.data(), nv),
-                    Jet(t, 1, 0))
-                    .d;
+      rhs[r] =
+          -c.g(std::span<const Jet>(x.data(), nx), std::span<const Jet>(v.data(), nv), Jet(t, 1, 0))
+               .d;
       break;
     }
   }

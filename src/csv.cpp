@@ -116,8 +116,9 @@ std::string forward_csv(const ForwardResult& r) {
       labels, static_cast<int>(r.time.size()),
       [&](Row& row, int k) {
         common_row(row, r, k);
-        for (double v : {r.kinetic[k], r.potential[k], r.input_work[k], r.dissipated[k],
-                         r.load_work[k], r.constraint_work[k], r.residuals(k, 0), r.residuals(k, 1)})
+        for (double v :
+             {r.kinetic[k], r.potential[k], r.input_work[k], r.dissipated[k], r.load_work[k],
+              r.constraint_work[k], r.residuals(k, 0), r.residuals(k, 1)})
           row.put(v);
       },
       r.time);

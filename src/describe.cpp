@@ -8,8 +8,8 @@ namespace mo2d {
 std::string describe(const Model& m) {
   std::ostringstream s;
   s << "model '" << m.name << "': " << m.bodies.size() << " bodies, " << m.n0 << " coordinates, "
-    << m.n1 << " quasi-velocities, " << m.m0 << " position rows, " << m.m1
-    << " velocity rows, " << m.dof << " DOF" << (m.holonomic ? "" : " (non-holonomic)") << "\n";
+    << m.n1 << " quasi-velocities, " << m.m0 << " position rows, " << m.m1 << " velocity rows, "
+    << m.dof << " DOF" << (m.holonomic ? "" : " (non-holonomic)") << "\n";
   s << "coordinates:";
   for (const auto& l : m.coordinate_labels) s << " " << l;
   s << "\nquasi-velocities:";

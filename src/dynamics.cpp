@@ -10,8 +10,8 @@ namespace mo2d {
 namespace {
 
 // Generalized force of a force F applied at the point (ci, cj, gamma, rho): J^T F.
-inline void add_point_force(const Body& b, int ci, int cj, double gamma, double rho,
-                            const Vec2& F, double* local) {
+inline void add_point_force(const Body& b, int ci, int cj, double gamma, double rho, const Vec2& F,
+                            double* local) {
   if (cj < 0) {
     local[2 * ci] += F.x();
     local[2 * ci + 1] += F.y();
@@ -77,7 +77,8 @@ PointState point_state(const Model& m, const BodyPoint& bp, const Eigen::Ref<con
           local_velocity_of_point(b, q1, bp.ci, bp.cj, bp.gamma, bp.rho)};
 }
 
-double relative_angle(const Model& m, const TorsionalLoad& l, const Eigen::Ref<const VectorXd>& q0) {
+double relative_angle(const Model& m, const TorsionalLoad& l,
+                      const Eigen::Ref<const VectorXd>& q0) {
   auto th = [&](int body) { return body < 0 ? 0.0 : body_angle(m.bodies[body], q0); };
   return detail::wrap_angle(th(l.body2) - th(l.body1) - l.rest);
 }
@@ -177,7 +178,8 @@ void body_applied(const Model& m, const Eigen::Ref<const VectorXd>& q0,
                       local.data() + m.bodies[s.b.body].offset);
   }
   for (const auto& l : m.torsional_springs) {
-    const double tau = -l.stiffness * relative_angle(m, l, q0) - l.damping * relative_rate(m, l, q1);
+    const double tau =
+        -l.stiffness * relative_angle(m, l, q0) - l.damping * relative_rate(m, l, q1);
     if (l.body2 >= 0) local[m.bodies[l.body2].offset + m.bodies[l.body2].slots() - 1] += tau;
     if (l.body1 >= 0) local[m.bodies[l.body1].offset + m.bodies[l.body1].slots() - 1] -= tau;
   }

@@ -80,10 +80,13 @@ inline void count_malloc() {
 
 // ---- C-level allocation counting ----------------------------------------------------------------
 #if defined(MO2D_ALLOC_TEST_ASAN)
-extern "C" int __sanitizer_install_malloc_and_free_hooks(
-    void (*malloc_hook)(const volatile void*, std::size_t), void (*free_hook)(const volatile void*));
+extern "C" int __sanitizer_install_malloc_and_free_hooks(void (*malloc_hook)(const volatile void*,
+                                                                             std::size_t),
+                                                         void (*free_hook)(const volatile void*));
 namespace {
-void asan_malloc_hook(const volatile void*, std::size_t) { count_malloc(); }
+void asan_malloc_hook(const volatile void*, std::size_t) {
+  count_malloc();
+}
 void asan_free_hook(const volatile void*) {}
 const bool hooks_installed =
     __sanitizer_install_malloc_and_free_hooks(asan_malloc_hook, asan_free_hook) != 0;
@@ -154,12 +157,24 @@ void* allocate_nothrow(std::size_t n, A... a) noexcept {
 
 }  // namespace
 
-void* operator new(std::size_t n) { return allocate(n); }
-void* operator new[](std::size_t n) { return allocate(n); }
-void* operator new(std::size_t n, const std::nothrow_t&) noexcept { return allocate_nothrow(n); }
-void* operator new[](std::size_t n, const std::nothrow_t&) noexcept { return allocate_nothrow(n); }
-void* operator new(std::size_t n, std::align_val_t a) { return allocate(n, a); }
-void* operator new[](std::size_t n, std::align_val_t a) { return allocate(n, a); }
+void* operator new(std::size_t n) {
+  return allocate(n);
+}
+void* operator new[](std::size_t n) {
+  return allocate(n);
+}
+void* operator new(std::size_t n, const std::nothrow_t&) noexcept {
+  return allocate_nothrow(n);
+}
+void* operator new[](std::size_t n, const std::nothrow_t&) noexcept {
+  return allocate_nothrow(n);
+}
+void* operator new(std::size_t n, std::align_val_t a) {
+  return allocate(n, a);
+}
+void* operator new[](std::size_t n, std::align_val_t a) {
+  return allocate(n, a);
+}
 void* operator new(std::size_t n, std::align_val_t a, const std::nothrow_t&) noexcept {
   return allocate_nothrow(n, a);
 }
@@ -167,18 +182,42 @@ void* operator new[](std::size_t n, std::align_val_t a, const std::nothrow_t&) n
   return allocate_nothrow(n, a);
 }
 
-void operator delete(void* p) noexcept { std::free(p); }
-void operator delete[](void* p) noexcept { std::free(p); }
-void operator delete(void* p, std::size_t) noexcept { std::free(p); }
-void operator delete[](void* p, std::size_t) noexcept { std::free(p); }
-void operator delete(void* p, const std::nothrow_t&) noexcept { std::free(p); }
-void operator delete[](void* p, const std::nothrow_t&) noexcept { std::free(p); }
-void operator delete(void* p, std::align_val_t) noexcept { std::free(p); }
-void operator delete[](void* p, std::align_val_t) noexcept { std::free(p); }
-void operator delete(void* p, std::size_t, std::align_val_t) noexcept { std::free(p); }
-void operator delete[](void* p, std::size_t, std::align_val_t) noexcept { std::free(p); }
-void operator delete(void* p, std::align_val_t, const std::nothrow_t&) noexcept { std::free(p); }
-void operator delete[](void* p, std::align_val_t, const std::nothrow_t&) noexcept { std::free(p); }
+void operator delete(void* p) noexcept {
+  std::free(p);
+}
+void operator delete[](void* p) noexcept {
+  std::free(p);
+}
+void operator delete(void* p, std::size_t) noexcept {
+  std::free(p);
+}
+void operator delete[](void* p, std::size_t) noexcept {
+  std::free(p);
+}
+void operator delete(void* p, const std::nothrow_t&) noexcept {
+  std::free(p);
+}
+void operator delete[](void* p, const std::nothrow_t&) noexcept {
+  std::free(p);
+}
+void operator delete(void* p, std::align_val_t) noexcept {
+  std::free(p);
+}
+void operator delete[](void* p, std::align_val_t) noexcept {
+  std::free(p);
+}
+void operator delete(void* p, std::size_t, std::align_val_t) noexcept {
+  std::free(p);
+}
+void operator delete[](void* p, std::size_t, std::align_val_t) noexcept {
+  std::free(p);
+}
+void operator delete(void* p, std::align_val_t, const std::nothrow_t&) noexcept {
+  std::free(p);
+}
+void operator delete[](void* p, std::align_val_t, const std::nothrow_t&) noexcept {
+  std::free(p);
+}
 
 // ---- tests --------------------------------------------------------------------------------------
 namespace {
@@ -249,7 +288,8 @@ void expect_no_allocation(const mo2d::mechanisms::Example& ex) {
   Counts c;
   {
     CountAllocations scope;
-    for (int k = warmup; k < warmup + count; ++k) mo2d::inverse_dynamics_sample(model, data, time(k));
+    for (int k = warmup; k < warmup + count; ++k)
+      mo2d::inverse_dynamics_sample(model, data, time(k));
     c = scope.stop();
   }
   EXPECT_EQ(c.news, 0) << "operator new calls in " << count << " samples";
@@ -266,9 +306,13 @@ void expect_no_allocation(const mo2d::mechanisms::Example& ex) {
 // workspace) removed them. Checked: the default ComplementMethod::prescribed path on the reference
 // runs (Newton from the prediction converges; the continuation fallback is not exercised).
 // ComplementMethod::recursive and the throwing error paths allocate by design.
-TEST(NoAllocation, WhitworthSample) { expect_no_allocation(mo2d::mechanisms::whitworth()); }
+TEST(NoAllocation, WhitworthSample) {
+  expect_no_allocation(mo2d::mechanisms::whitworth());
+}
 
-TEST(NoAllocation, Rrr3Sample) { expect_no_allocation(mo2d::mechanisms::rrr3()); }
+TEST(NoAllocation, Rrr3Sample) {
+  expect_no_allocation(mo2d::mechanisms::rrr3());
+}
 
 // The same run from the scene file: its motions are Expressions evaluated on Jet (recursion over
 // the parsed tree, no allocation).

@@ -19,8 +19,11 @@ TEST(Constraints, RollingDiscVelocityLevelConstraint) {
   System s("rolling_disc");
   s.add_ground_node("L", {-1, r}).add_ground_node("R", {1, r});
   s.add_body({.name = "disc", .nodes = {{"C", {0, r}}}, .mass = m, .inertia = I});
-  s.add_pin_in_slot({.name = "rail", .axis_from = "ground.L", .axis_to = "ground.R",
-                     .pin = "disc.C", .actuated_slide = true});
+  s.add_pin_in_slot({.name = "rail",
+                     .axis_from = "ground.L",
+                     .axis_to = "ground.R",
+                     .pin = "disc.C",
+                     .actuated_slide = true});
   s.add_constraint(VelocityConstraintDef{
       .name = "roll",
       .coords = {},
@@ -30,8 +33,8 @@ TEST(Constraints, RollingDiscVelocityLevelConstraint) {
   EXPECT_EQ(model.dof, 1);
   EXPECT_FALSE(model.holonomic);
   auto x = [](Jet t) { return 0.3 * sin(2.0 * t) + 0.1 * t * t; };
-  const InverseResult res =
-      inverse_dynamics(model, std::vector<Prescribed>{{"disc.C.x", x}}, {.t0 = 0, .t1 = 3, .samples = 61});
+  const InverseResult res = inverse_dynamics(model, std::vector<Prescribed>{{"disc.C.x", x}},
+                                             {.t0 = 0, .t1 = 3, .samples = 61});
   for (int i = 0; i < res.time.size(); ++i) {
     const Jet xi = x(Jet(res.time[i], 1, 0));
     EXPECT_NEAR(res.efforts(i, 0), (m + I / (r * r)) * xi.dd, 1e-12);
@@ -55,13 +58,14 @@ TEST(Constraints, GearPairPositionLevelConstraint) {
   s.add_coordinate({.name = "th1", .rate = {{"g1.w", 1}}});
   s.add_coordinate({.name = "th2", .rate = {{"g2.w", 1}}});
   s.add_constraint(PositionConstraintDef{
-      .name = "mesh", .args = {"th1", "th2"},
-      .psi = [](std::span<const Jet> q, Jet) { return q[0] + 2.0 * q[1]; }});
+      .name = "mesh", .args = {"th1", "th2"}, .psi = [](std::span<const Jet> q, Jet) {
+        return q[0] + 2.0 * q[1];
+      }});
   const Model model = build_model(s);
   EXPECT_EQ(model.dof, 1);
   auto th = [](Jet t) { return 1.2 * sin(1.5 * t); };
-  const InverseResult res =
-      inverse_dynamics(model, std::vector<Prescribed>{{"th1", th}}, {.t0 = 0, .t1 = 4, .samples = 41});
+  const InverseResult res = inverse_dynamics(model, std::vector<Prescribed>{{"th1", th}},
+                                             {.t0 = 0, .t1 = 4, .samples = 41});
   for (int i = 0; i < res.time.size(); ++i) {
     const Jet a = th(Jet(res.time[i], 1, 0));
     EXPECT_NEAR(res.efforts(i, 0), (I1 + I2 / 4) * a.dd, 1e-12);
@@ -79,14 +83,18 @@ TEST(Constraints, RheonomicUserConstraintDrivesThePendulum) {
   const double L = 0.8, mass = 1.3, g = 9.81;
   System s("clock_pendulum");
   s.add_ground_node("O", {0, 0});
-  s.add_body({.name = "link", .nodes = {{"O", {0, 0}}, {"P", {L * std::cos(0.3), L * std::sin(0.3)}}},
-              .mass = mass, .inertia = 0.0, .com = CenterOfMass::at_node("P")});
+  s.add_body({.name = "link",
+              .nodes = {{"O", {0, 0}}, {"P", {L * std::cos(0.3), L * std::sin(0.3)}}},
+              .mass = mass,
+              .inertia = 0.0,
+              .com = CenterOfMass::at_node("P")});
   s.add_revolute({.name = "pivot", .node_a = "ground.O", .node_b = "link.O"});
   s.add_coordinate({.name = "angle", .rate = {{"link.w", 1.0}}});
   auto theta = [](Jet t) { return 0.3 + 0.5 * sin(3.0 * t) + t * t; };
   s.add_constraint(PositionConstraintDef{
-      .name = "clock", .args = {"angle"},
-      .psi = [theta](std::span<const Jet> q, Jet t) { return q[0] - theta(t); }});
+      .name = "clock", .args = {"angle"}, .psi = [theta](std::span<const Jet> q, Jet t) {
+        return q[0] - theta(t);
+      }});
   s.set_gravity({0, -g});
   const Model model = build_model(s);
   EXPECT_EQ(model.dof, 0);
@@ -109,8 +117,11 @@ TEST(Loads, ForceAtAPointAndTorqueOnABody) {
   auto fx = [](double t) { return 2.0 * std::cos(t); };
   auto fy = [](double t) { return -1.0 + 0.5 * t; };
   auto T = [](double t) { return 0.3 * std::sin(3 * t); };
-  s.add_force({.name = "push", .body = "link", .point = {L * std::cos(0.4), L * std::sin(0.4)},
-               .fx = fx, .fy = fy});
+  s.add_force({.name = "push",
+               .body = "link",
+               .point = {L * std::cos(0.4), L * std::sin(0.4)},
+               .fx = fx,
+               .fy = fy});
   s.add_torque({.name = "twist", .body = "link", .torque = T});
   const Model model = build_model(s);
   const InverseResult res = inverse_dynamics(model, ex.motion, ex.run);
@@ -130,16 +141,22 @@ TEST(Loads, ForceBetweenNodesAndCentreOfMassAsPoint) {
   const double L = 2.0, mass = 3.0;
   System s("bar");
   s.add_ground_node("O", {0, 0});
-  s.add_body({.name = "bar", .nodes = {{"O", {0, 0}}, {"E", {L, 0}}}, .mass = mass,
-              .inertia = mass * L * L / 12, .com = CenterOfMass::at_point({L / 2, 0})});
+  s.add_body({.name = "bar",
+              .nodes = {{"O", {0, 0}}, {"E", {L, 0}}},
+              .mass = mass,
+              .inertia = mass * L * L / 12,
+              .com = CenterOfMass::at_point({L / 2, 0})});
   s.add_revolute({.name = "pivot", .node_a = "ground.O", .node_b = "bar.O", .actuated = true});
   s.add_coordinate({.name = "angle", .rate = {{"bar.w", 1}}});
-  s.add_force({.name = "f", .body = "bar", .point = {0.6 * L, 0.1},
-               .fx = [](double) { return 0.0; }, .fy = [](double t) { return 1.0 + t; }});
+  s.add_force({.name = "f",
+               .body = "bar",
+               .point = {0.6 * L, 0.1},
+               .fx = [](double) { return 0.0; },
+               .fy = [](double t) { return 1.0 + t; }});
   const Model model = build_model(s);
   auto th = [](Jet t) { return 0.5 * t * t; };  // angle'' = 1
-  const InverseResult res =
-      inverse_dynamics(model, std::vector<Prescribed>{{"angle", th}}, {.t0 = 0, .t1 = 1, .samples = 11});
+  const InverseResult res = inverse_dynamics(model, std::vector<Prescribed>{{"angle", th}},
+                                             {.t0 = 0, .t1 = 1, .samples = 11});
   for (int i = 0; i < res.time.size(); ++i) {
     const double t = res.time[i], a = 0.5 * t * t;
     // point (0.6 L, 0.1) in the body frame rotated by a

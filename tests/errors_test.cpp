@@ -25,8 +25,8 @@ constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 constexpr double kInf = std::numeric_limits<double>::infinity();
 
 std::string describe_error(const Error& e) {
-  return std::string("\"") + e.what() + "\" (element '" + e.element() +
-         "', time " + std::to_string(e.time()) + ")";
+  return std::string("\"") + e.what() + "\" (element '" + e.element() + "', time " +
+         std::to_string(e.time()) + ")";
 }
 
 // Passes if f throws mo2d::Error whose what() contains every string of `parts`; the caught
@@ -38,7 +38,8 @@ std::string describe_error(const Error& e) {
     f();
   } catch (const Error& e) {
     if (out) *out = e;
-    if (std::getenv("MO2D_SHOW_ERRORS")) std::cout << "  [mo2d::Error] " << describe_error(e) << "\n";
+    if (std::getenv("MO2D_SHOW_ERRORS"))
+      std::cout << "  [mo2d::Error] " << describe_error(e) << "\n";
     const std::string what = e.what();
     for (const auto& p : parts)
       if (what.find(p) == std::string::npos)
@@ -74,8 +75,8 @@ bool contains(const std::string& s, const std::string& part) {
     if (contains(e.what(), n)) return ::testing::AssertionSuccess();
   std::string list;
   for (const auto& n : names) list += (list.empty() ? "" : ", ") + n;
-  return ::testing::AssertionFailure() << "the message names none of {" << list
-                                       << "}: " << describe_error(e);
+  return ::testing::AssertionFailure()
+         << "the message names none of {" << list << "}: " << describe_error(e);
 }
 
 std::function<void()> building(const System& s, BuildOptions o = {}) {
@@ -98,7 +99,8 @@ Prescribed constant(std::string label, double value) {
 System crank_only() {
   System s("crank_only");
   s.add_ground_node("O", {0, 0});
-  s.add_body({.name = "crank", .nodes = {{"O", {0, 0}}, {"A", {0.1, 0}}}, .mass = 1, .inertia = 0.01});
+  s.add_body(
+      {.name = "crank", .nodes = {{"O", {0, 0}}, {"A", {0.1, 0}}}, .mass = 1, .inertia = 0.01});
   s.add_revolute({.name = "pivot", .node_a = "ground.O", .node_b = "crank.O", .actuated = true});
   return s;
 }
@@ -127,11 +129,15 @@ System fourbar_system(bool crank_actuated, bool rocker_actuated) {
   s.add_body({.name = "crank", .nodes = {{"O", g.A0}, {"A", g.A}}, .mass = 0.2, .inertia = 2e-4});
   s.add_body({.name = "coupler", .nodes = {{"A", g.A}, {"B", g.B}}, .mass = 0.5, .inertia = 5e-3});
   s.add_body({.name = "rocker", .nodes = {{"O", g.B0}, {"B", g.B}}, .mass = 0.4, .inertia = 3e-3});
-  s.add_revolute({.name = "crank_pivot", .node_a = "ground.A0", .node_b = "crank.O",
+  s.add_revolute({.name = "crank_pivot",
+                  .node_a = "ground.A0",
+                  .node_b = "crank.O",
                   .actuated = crank_actuated});
   s.add_revolute({.name = "crank_pin", .node_a = "crank.A", .node_b = "coupler.A"});
   s.add_revolute({.name = "rocker_pin", .node_a = "coupler.B", .node_b = "rocker.B"});
-  s.add_revolute({.name = "rocker_pivot", .node_a = "ground.B0", .node_b = "rocker.O",
+  s.add_revolute({.name = "rocker_pivot",
+                  .node_a = "ground.B0",
+                  .node_b = "rocker.O",
                   .actuated = rocker_actuated});
   s.add_coordinate({.name = "crank.angle", .rate = {{"crank.w", 1.0}}});
   s.add_coordinate({.name = "rocker.angle", .rate = {{"rocker.w", 1.0}}});
@@ -178,8 +184,8 @@ TEST(Errors, PrismaticMissingSliderNodeWithSuggestion) {
   System s("s");
   s.add_ground_node("R1", {0, 0}).add_ground_node("R2", {1, 0});
   s.add_body({.name = "slider", .nodes = {{"P", {0.5, 0}}}, .mass = 1});
-  s.add_prismatic({.name = "rail", .axis_from = "ground.R1", .axis_to = "ground.R2",
-                   .slider = "slider.Q"});
+  s.add_prismatic(
+      {.name = "rail", .axis_from = "ground.R1", .axis_to = "ground.R2", .slider = "slider.Q"});
   Error e("");
   EXPECT_TRUE(ThrowsError(building(s), {"rail", "slider.Q", "did you mean 'slider.P'"}, &e));
   EXPECT_EQ(e.element(), "rail");
@@ -189,8 +195,8 @@ TEST(Errors, PrismaticMissingAxisNodeWithSuggestion) {
   System s("s");
   s.add_ground_node("R1", {0, 0}).add_ground_node("R2", {1, 0});
   s.add_body({.name = "slider", .nodes = {{"P", {0.5, 0}}}, .mass = 1});
-  s.add_prismatic({.name = "rail", .axis_from = "ground.R1", .axis_to = "ground.R3",
-                   .slider = "slider.P"});
+  s.add_prismatic(
+      {.name = "rail", .axis_from = "ground.R1", .axis_to = "ground.R3", .slider = "slider.P"});
   EXPECT_TRUE(ThrowsError(building(s), {"rail", "ground.R3", "did you mean"}));
 }
 
@@ -198,10 +204,12 @@ TEST(Errors, PinInSlotMissingPinWithSuggestion) {
   System s("s");
   s.add_ground_node("O", {0, 0}).add_ground_node("C", {0, 0.3});
   s.add_body({.name = "lever", .nodes = {{"O", {0, 0}}, {"B", {0, 1}}}, .mass = 1, .inertia = 0.1});
-  s.add_body({.name = "crank", .nodes = {{"O", {0, 0.3}}, {"A", {0, 0.4}}}, .mass = 1, .inertia = 0.1});
+  s.add_body(
+      {.name = "crank", .nodes = {{"O", {0, 0.3}}, {"A", {0, 0.4}}}, .mass = 1, .inertia = 0.1});
   s.add_revolute({.name = "lever_pivot", .node_a = "ground.O", .node_b = "lever.O"});
   s.add_revolute({.name = "crank_pivot", .node_a = "ground.C", .node_b = "crank.O"});
-  s.add_pin_in_slot({.name = "slot", .axis_from = "lever.O", .axis_to = "lever.B", .pin = "crank.AA"});
+  s.add_pin_in_slot(
+      {.name = "slot", .axis_from = "lever.O", .axis_to = "lever.B", .pin = "crank.AA"});
   Error e("");
   EXPECT_TRUE(ThrowsError(building(s), {"slot", "crank.AA", "did you mean 'crank.A'"}, &e));
   EXPECT_EQ(e.element(), "slot");
@@ -324,22 +332,26 @@ TEST(Errors, JointWithEmptyName) {
 
 TEST(Errors, CentreOfMassAtUnknownNodeWithSuggestion) {
   System s("s");
-  s.add_body({.name = "link", .nodes = {{"O", {0, 0}}, {"tip", {1, 0}}}, .mass = 1,
+  s.add_body({.name = "link",
+              .nodes = {{"O", {0, 0}}, {"tip", {1, 0}}},
+              .mass = 1,
               .com = CenterOfMass::between("O", "tpi", 0.5)});
   EXPECT_TRUE(ThrowsError(building(s), {"link", "tpi", "did you mean 'tip'"}));
 }
 
 TEST(Errors, CentreOfMassBetweenTheSameNode) {
   System s("s");
-  s.add_body({.name = "link", .nodes = {{"O", {0, 0}}, {"P", {1, 0}}}, .mass = 1,
+  s.add_body({.name = "link",
+              .nodes = {{"O", {0, 0}}, {"P", {1, 0}}},
+              .mass = 1,
               .com = CenterOfMass::between("O", "O", 0.5)});
   EXPECT_TRUE(ThrowsError(building(s), {"link", "centre of mass"}));
 }
 
 TEST(Errors, OneNodeBodyWithCentreOfMassElsewhere) {
   System s("s");
-  s.add_body({.name = "bead", .nodes = {{"P", {0, 0}}}, .mass = 1,
-              .com = CenterOfMass::at_point({1, 0})});
+  s.add_body(
+      {.name = "bead", .nodes = {{"P", {0, 0}}}, .mass = 1, .com = CenterOfMass::at_point({1, 0})});
   EXPECT_TRUE(ThrowsError(building(s), {"bead", "centre of mass"}));
 }
 
@@ -351,8 +363,8 @@ TEST(Errors, PrismaticZeroLengthAxis) {
   System s("s");
   s.add_ground_node("R1", {0, 0}).add_ground_node("R2", {0, 0});
   s.add_body({.name = "slider", .nodes = {{"P", {0.5, 0}}}, .mass = 1});
-  s.add_prismatic({.name = "rail", .axis_from = "ground.R1", .axis_to = "ground.R2",
-                   .slider = "slider.P"});
+  s.add_prismatic(
+      {.name = "rail", .axis_from = "ground.R1", .axis_to = "ground.R2", .slider = "slider.P"});
   Error e("");
   EXPECT_TRUE(ThrowsError(building(s), {"rail", "zero-length axis", "ground.R1", "ground.R2"}, &e));
   EXPECT_EQ(e.element(), "rail");
@@ -362,8 +374,8 @@ TEST(Errors, PrismaticAxisFromAndToTheSameNode) {
   System s("s");
   s.add_ground_node("R1", {0, 0});
   s.add_body({.name = "slider", .nodes = {{"P", {0.5, 0}}}, .mass = 1});
-  s.add_prismatic({.name = "rail", .axis_from = "ground.R1", .axis_to = "ground.R1",
-                   .slider = "slider.P"});
+  s.add_prismatic(
+      {.name = "rail", .axis_from = "ground.R1", .axis_to = "ground.R1", .slider = "slider.P"});
   EXPECT_TRUE(ThrowsError(building(s), {"rail", "zero-length axis"}));
 }
 
@@ -371,8 +383,8 @@ TEST(Errors, PrismaticAxisNodesOnDifferentBodies) {
   System s = crank_only();
   s.add_ground_node("R", {1, 0});
   s.add_body({.name = "slider", .nodes = {{"P", {0.5, 0}}}, .mass = 1});
-  s.add_prismatic({.name = "rail", .axis_from = "crank.A", .axis_to = "ground.R",
-                   .slider = "slider.P"});
+  s.add_prismatic(
+      {.name = "rail", .axis_from = "crank.A", .axis_to = "ground.R", .slider = "slider.P"});
   EXPECT_TRUE(ThrowsError(building(s), {"rail", "same body"}));
 }
 
@@ -386,8 +398,8 @@ TEST(Errors, PrismaticSliderOnTheAxisBody) {
 TEST(Errors, PrismaticSliderOnGroundWithGroundAxis) {
   System s("s");
   s.add_ground_node("R1", {0, 0}).add_ground_node("R2", {1, 0}).add_ground_node("P", {0.5, 0});
-  s.add_prismatic({.name = "rail", .axis_from = "ground.R1", .axis_to = "ground.R2",
-                   .slider = "ground.P"});
+  s.add_prismatic(
+      {.name = "rail", .axis_from = "ground.R1", .axis_to = "ground.R2", .slider = "ground.P"});
   EXPECT_TRUE(ThrowsError(building(s), {"rail", "another body"}));
 }
 
@@ -395,7 +407,8 @@ TEST(Errors, PinInSlotZeroLengthAxis) {
   System s("s");
   s.add_ground_node("S", {0, 0});
   s.add_body({.name = "pin", .nodes = {{"P", {0.5, 0}}}, .mass = 1});
-  s.add_pin_in_slot({.name = "slot", .axis_from = "ground.S", .axis_to = "ground.S", .pin = "pin.P"});
+  s.add_pin_in_slot(
+      {.name = "slot", .axis_from = "ground.S", .axis_to = "ground.S", .pin = "pin.P"});
   EXPECT_TRUE(ThrowsError(building(s), {"slot", "zero-length axis"}));
 }
 
@@ -403,7 +416,8 @@ TEST(Errors, PinInSlotAxisNodesOnDifferentBodies) {
   System s = crank_only();
   s.add_ground_node("R", {1, 0});
   s.add_body({.name = "pin", .nodes = {{"P", {0.5, 0}}}, .mass = 1});
-  s.add_pin_in_slot({.name = "slot", .axis_from = "crank.A", .axis_to = "ground.R", .pin = "pin.P"});
+  s.add_pin_in_slot(
+      {.name = "slot", .axis_from = "crank.A", .axis_to = "ground.R", .pin = "pin.P"});
   EXPECT_TRUE(ThrowsError(building(s), {"slot", "same body"}));
 }
 
@@ -445,12 +459,18 @@ constexpr BuildOptions kGapsAllowed{.joint_tolerance = 1.0};
 TEST(Errors, FourBarThatCannotClose) {
   System s("short_fourbar");
   s.add_ground_node("A0", {0, 0}).add_ground_node("B0", {0.4, 0});
-  s.add_body({.name = "crank", .nodes = {{"O", {0, 0}}, {"A", {0, 0.1}}}, .mass = 1, .inertia = 1e-3});
-  s.add_body({.name = "coupler", .nodes = {{"A", {0, 0.1}}, {"B", {0.1, 0.1}}}, .mass = 1,
+  s.add_body(
+      {.name = "crank", .nodes = {{"O", {0, 0}}, {"A", {0, 0.1}}}, .mass = 1, .inertia = 1e-3});
+  s.add_body({.name = "coupler",
+              .nodes = {{"A", {0, 0.1}}, {"B", {0.1, 0.1}}},
+              .mass = 1,
               .inertia = 1e-3});
-  s.add_body({.name = "rocker", .nodes = {{"O", {0.4, 0}}, {"B", {0.4, 0.1}}}, .mass = 1,
+  s.add_body({.name = "rocker",
+              .nodes = {{"O", {0.4, 0}}, {"B", {0.4, 0.1}}},
+              .mass = 1,
               .inertia = 1e-3});
-  s.add_revolute({.name = "crank_pivot", .node_a = "ground.A0", .node_b = "crank.O", .actuated = true});
+  s.add_revolute(
+      {.name = "crank_pivot", .node_a = "ground.A0", .node_b = "crank.O", .actuated = true});
   s.add_revolute({.name = "crank_pin", .node_a = "crank.A", .node_b = "coupler.A"});
   s.add_revolute({.name = "rocker_pin", .node_a = "coupler.B", .node_b = "rocker.B"});
   s.add_revolute({.name = "rocker_pivot", .node_a = "ground.B0", .node_b = "rocker.O"});
@@ -465,12 +485,18 @@ TEST(Errors, FourBarThatCannotClose) {
 TEST(Errors, FourBarThatCannotCloseUnreduced) {
   System s("short_fourbar");
   s.add_ground_node("A0", {0, 0}).add_ground_node("B0", {0.4, 0});
-  s.add_body({.name = "crank", .nodes = {{"O", {0, 0}}, {"A", {0, 0.1}}}, .mass = 1, .inertia = 1e-3});
-  s.add_body({.name = "coupler", .nodes = {{"A", {0, 0.1}}, {"B", {0.1, 0.1}}}, .mass = 1,
+  s.add_body(
+      {.name = "crank", .nodes = {{"O", {0, 0}}, {"A", {0, 0.1}}}, .mass = 1, .inertia = 1e-3});
+  s.add_body({.name = "coupler",
+              .nodes = {{"A", {0, 0.1}}, {"B", {0.1, 0.1}}},
+              .mass = 1,
               .inertia = 1e-3});
-  s.add_body({.name = "rocker", .nodes = {{"O", {0.4, 0}}, {"B", {0.4, 0.1}}}, .mass = 1,
+  s.add_body({.name = "rocker",
+              .nodes = {{"O", {0.4, 0}}, {"B", {0.4, 0.1}}},
+              .mass = 1,
               .inertia = 1e-3});
-  s.add_revolute({.name = "crank_pivot", .node_a = "ground.A0", .node_b = "crank.O", .actuated = true});
+  s.add_revolute(
+      {.name = "crank_pivot", .node_a = "ground.A0", .node_b = "crank.O", .actuated = true});
   s.add_revolute({.name = "crank_pin", .node_a = "crank.A", .node_b = "coupler.A"});
   s.add_revolute({.name = "rocker_pin", .node_a = "coupler.B", .node_b = "rocker.B"});
   s.add_revolute({.name = "rocker_pivot", .node_a = "ground.B0", .node_b = "rocker.O"});
@@ -485,12 +511,18 @@ TEST(Errors, FourBarThatCannotCloseUnreduced) {
 TEST(Errors, AssemblyFailureElementIsTheRowNamedInTheMessage) {
   System s("short_fourbar");
   s.add_ground_node("A0", {0, 0}).add_ground_node("B0", {0.4, 0});
-  s.add_body({.name = "crank", .nodes = {{"O", {0, 0}}, {"A", {0, 0.1}}}, .mass = 1, .inertia = 1e-3});
-  s.add_body({.name = "coupler", .nodes = {{"A", {0, 0.1}}, {"B", {0.1, 0.1}}}, .mass = 1,
+  s.add_body(
+      {.name = "crank", .nodes = {{"O", {0, 0}}, {"A", {0, 0.1}}}, .mass = 1, .inertia = 1e-3});
+  s.add_body({.name = "coupler",
+              .nodes = {{"A", {0, 0.1}}, {"B", {0.1, 0.1}}},
+              .mass = 1,
               .inertia = 1e-3});
-  s.add_body({.name = "rocker", .nodes = {{"O", {0.4, 0}}, {"B", {0.4, 0.1}}}, .mass = 1,
+  s.add_body({.name = "rocker",
+              .nodes = {{"O", {0.4, 0}}, {"B", {0.4, 0.1}}},
+              .mass = 1,
               .inertia = 1e-3});
-  s.add_revolute({.name = "crank_pivot", .node_a = "ground.A0", .node_b = "crank.O", .actuated = true});
+  s.add_revolute(
+      {.name = "crank_pivot", .node_a = "ground.A0", .node_b = "crank.O", .actuated = true});
   s.add_revolute({.name = "crank_pin", .node_a = "crank.A", .node_b = "coupler.A"});
   s.add_revolute({.name = "rocker_pin", .node_a = "coupler.B", .node_b = "rocker.B"});
   s.add_revolute({.name = "rocker_pivot", .node_a = "ground.B0", .node_b = "rocker.O"});
@@ -504,12 +536,18 @@ TEST(Errors, AssemblyFailureElementIsTheRowNamedInTheMessage) {
 TEST(Errors, ParallelogramWithAFifthBarIsRedundant) {
   System s("parallelogram");
   s.add_ground_node("A0", {0, 0}).add_ground_node("M0", {0.5, 0}).add_ground_node("B0", {1, 0});
-  s.add_body({.name = "crank", .nodes = {{"O", {0, 0}}, {"A", {0, 0.5}}}, .mass = 1, .inertia = 0.1});
-  s.add_body({.name = "coupler", .nodes = {{"A", {0, 0.5}}, {"B", {1, 0.5}}, {"M", {0.5, 0.5}}},
-              .mass = 1, .inertia = 0.1});
-  s.add_body({.name = "rocker", .nodes = {{"O", {1, 0}}, {"B", {1, 0.5}}}, .mass = 1, .inertia = 0.1});
-  s.add_body({.name = "bar5", .nodes = {{"O", {0.5, 0}}, {"M", {0.5, 0.5}}}, .mass = 1, .inertia = 0.1});
-  s.add_revolute({.name = "crank_pivot", .node_a = "ground.A0", .node_b = "crank.O", .actuated = true});
+  s.add_body(
+      {.name = "crank", .nodes = {{"O", {0, 0}}, {"A", {0, 0.5}}}, .mass = 1, .inertia = 0.1});
+  s.add_body({.name = "coupler",
+              .nodes = {{"A", {0, 0.5}}, {"B", {1, 0.5}}, {"M", {0.5, 0.5}}},
+              .mass = 1,
+              .inertia = 0.1});
+  s.add_body(
+      {.name = "rocker", .nodes = {{"O", {1, 0}}, {"B", {1, 0.5}}}, .mass = 1, .inertia = 0.1});
+  s.add_body(
+      {.name = "bar5", .nodes = {{"O", {0.5, 0}}, {"M", {0.5, 0.5}}}, .mass = 1, .inertia = 0.1});
+  s.add_revolute(
+      {.name = "crank_pivot", .node_a = "ground.A0", .node_b = "crank.O", .actuated = true});
   s.add_revolute({.name = "crank_pin", .node_a = "crank.A", .node_b = "coupler.A"});
   s.add_revolute({.name = "rocker_pin", .node_a = "coupler.B", .node_b = "rocker.B"});
   s.add_revolute({.name = "rocker_pivot", .node_a = "ground.B0", .node_b = "rocker.O"});
@@ -548,10 +586,13 @@ TEST(Errors, TwoRevolutesOnTheSameNodesUnreduced) {
 TEST(Errors, TwoPrismaticsLockingTheSameRotation) {
   System s("s");
   s.add_ground_node("R1", {0, 0}).add_ground_node("R2", {1, 0});
-  s.add_body({.name = "block", .nodes = {{"P", {0.5, 0}}, {"Q", {0.7, 0}}}, .mass = 1, .inertia = 0.1});
-  s.add_prismatic({.name = "rail", .axis_from = "ground.R1", .axis_to = "ground.R2",
-                   .slider = "block.P"});
-  s.add_prismatic({.name = "rail_again", .axis_from = "ground.R1", .axis_to = "ground.R2",
+  s.add_body(
+      {.name = "block", .nodes = {{"P", {0.5, 0}}, {"Q", {0.7, 0}}}, .mass = 1, .inertia = 0.1});
+  s.add_prismatic(
+      {.name = "rail", .axis_from = "ground.R1", .axis_to = "ground.R2", .slider = "block.P"});
+  s.add_prismatic({.name = "rail_again",
+                   .axis_from = "ground.R1",
+                   .axis_to = "ground.R2",
                    .slider = "block.Q"});
   Error e("");
   EXPECT_TRUE(ThrowsError(building(s), {"rail_again", "redundant"}, &e));
@@ -575,8 +616,9 @@ TEST(Errors, UserPositionConstraintDuplicatingAJoint) {
 TEST(Errors, UserPositionConstraintDuplicatingARigidBody) {
   System s = mechanisms::pendulum().system;
   s.add_constraint(PositionConstraintDef{
-      .name = "length", .args = {"link.P.x", "link.P.y"},
-      .psi = [](std::span<const Jet> x, Jet) { return 0.1 * (x[0] * x[0] + x[1] * x[1] - Jet(1)); }});
+      .name = "length", .args = {"link.P.x", "link.P.y"}, .psi = [](std::span<const Jet> x, Jet) {
+        return 0.1 * (x[0] * x[0] + x[1] * x[1] - Jet(1));
+      }});
   Error e("");
   EXPECT_TRUE(ThrowsError(building(s), {"redundant"}, &e));
   EXPECT_TRUE(NamesItsElement(e));
@@ -600,7 +642,6 @@ TEST(Errors, RevoluteJoiningTwoDifferentGroundNodesThroughABody) {
   EXPECT_EQ(e.element(), "second_pivot");
 }
 
-
 // The same clear diagnosis as with Reduction::flat, whatever the reduction: the topology check does
 // not depend on which joints are eliminated.
 TEST(Errors, RevoluteJoiningTwoDifferentGroundNodesUnreducedNamesTheJoint) {
@@ -608,8 +649,8 @@ TEST(Errors, RevoluteJoiningTwoDifferentGroundNodesUnreducedNamesTheJoint) {
   s.add_ground_node("B0", {1, 0});
   s.add_revolute({.name = "second_pivot", .node_a = "ground.B0", .node_b = "crank.O"});
   Error e("");
-  EXPECT_TRUE(ThrowsError(building(s, {.reduction = Reduction::none}),
-                          {"second_pivot", "ground"}, &e));
+  EXPECT_TRUE(
+      ThrowsError(building(s, {.reduction = Reduction::none}), {"second_pivot", "ground"}, &e));
   EXPECT_TRUE(NamesItsElement(e));
 }
 
@@ -695,14 +736,17 @@ TEST(Errors, UserConstraintWithTooManyArguments) {
 TEST(Errors, VelocityConstraintUnknownRate) {
   System s = mechanisms::pendulum().system;
   s.add_constraint(VelocityConstraintDef{
-      .name = "roll", .coords = {}, .rates = {"link.P.vz"},
+      .name = "roll",
+      .coords = {},
+      .rates = {"link.P.vz"},
       .g = [](std::span<const Jet>, std::span<const Jet> v, Jet) { return v[0]; }});
   EXPECT_TRUE(ThrowsError(building(s), {"roll", "link.P.vz", "did you mean"}));
 }
 
 TEST(Errors, ForceOnUnknownBodyWithSuggestion) {
   System s = crank_only();
-  s.add_force({.name = "push", .body = "crnak", .point = {0.1, 0}, .fx = [](double) { return 1.0; }});
+  s.add_force(
+      {.name = "push", .body = "crnak", .point = {0.1, 0}, .fx = [](double) { return 1.0; }});
   EXPECT_TRUE(ThrowsError(building(s), {"push", "crnak", "did you mean 'crank'"}));
 }
 
@@ -710,7 +754,8 @@ TEST(Errors, ForceOffTheNodeOfAOneNodeBody) {
   System s = crank_only();
   s.add_body({.name = "bead", .nodes = {{"P", {0.1, 0}}}, .mass = 1});
   s.add_revolute({.name = "pin", .node_a = "crank.A", .node_b = "bead.P"});
-  s.add_force({.name = "push", .body = "bead", .point = {0.5, 0}, .fx = [](double) { return 1.0; }});
+  s.add_force(
+      {.name = "push", .body = "bead", .point = {0.5, 0}, .fx = [](double) { return 1.0; }});
   EXPECT_TRUE(ThrowsError(building(s), {"push", "bead", "one node"}));
 }
 
@@ -734,7 +779,8 @@ TEST(Errors, NonFiniteGravity) {
 
 TEST(Errors, DuplicateInstanceNames) {
   System s("rrr3");
-  s.add_body({.name = "platform", .nodes = {{"C", {0, 0}}, {"P1", {1, 0}}}, .mass = 1, .inertia = 0.25});
+  s.add_body(
+      {.name = "platform", .nodes = {{"C", {0, 0}}, {"P1", {1, 0}}}, .mass = 1, .inertia = 0.25});
   const System leg = mechanisms::rrr3_leg();
   s.add_instance("leg1", leg);
   s.add_instance("leg1", leg, Placement{{0, 0}, 2.0});
@@ -788,7 +834,8 @@ TEST(Errors, ReferenceToANodeOfAMissingInstance) {
   System s = ex.system;
   s.add_revolute({.name = "attach4", .node_a = "platform.C", .node_b = "leg4.distal.P"});
   Error e("");
-  EXPECT_TRUE(ThrowsError(building(s), {"attach4", "leg4.distal.P", "not found", "did you mean"}, &e));
+  EXPECT_TRUE(
+      ThrowsError(building(s), {"attach4", "leg4.distal.P", "not found", "did you mean"}, &e));
   EXPECT_EQ(e.element(), "attach4");
 }
 
@@ -798,7 +845,8 @@ TEST(Errors, ReferenceToAMissingNodeInsideAnInstance) {
   System s("root");
   s.add_instance("leg1", leg);
   Error e("");
-  EXPECT_TRUE(ThrowsError(building(s), {"leg1.extra", "leg1.distal.Q", "did you mean 'distal."}, &e));
+  EXPECT_TRUE(
+      ThrowsError(building(s), {"leg1.extra", "leg1.distal.Q", "did you mean 'distal."}, &e));
 }
 
 TEST(Errors, InvalidInstanceName) {
@@ -822,14 +870,15 @@ TEST(Errors, PrescribingMoreCoordinatesThanDof) {
 TEST(Errors, PrescribingFewerCoordinatesThanDof) {
   auto ex = mechanisms::rrr3();  // 3 DOF
   std::vector<Prescribed> p(ex.motion.begin(), ex.motion.begin() + 2);
-  EXPECT_TRUE(ThrowsError(running(ex.system, p, ex.run),
-                          {"3 degree(s) of freedom", "2 coordinate(s)", "platform.C.x",
-                           "platform.C.y"}));
+  EXPECT_TRUE(
+      ThrowsError(running(ex.system, p, ex.run),
+                  {"3 degree(s) of freedom", "2 coordinate(s)", "platform.C.x", "platform.C.y"}));
 }
 
 TEST(Errors, PrescribingNothing) {
   auto ex = mechanisms::slider_crank();
-  EXPECT_TRUE(ThrowsError(running(ex.system, {}, ex.run), {"1 degree(s) of freedom", "0 coordinate"}));
+  EXPECT_TRUE(
+      ThrowsError(running(ex.system, {}, ex.run), {"1 degree(s) of freedom", "0 coordinate"}));
 }
 
 // With nothing prescribed the message names nothing at all: it should name the mechanism (its
@@ -906,9 +955,9 @@ TEST(Errors, SliderCrankPrescribingTheRailFixedCoordinateOffTheRail) {
 TEST(Errors, FourBarPrescribingADependentCouplerNodeCoordinate) {
   const System s = fourbar_system(true, false);
   Error e("");
-  EXPECT_TRUE(ThrowsError(
-      running(s, {{"coupler.A.y", [](Jet t) { return 0.1 * cos(t); }}}, {.t0 = 0, .t1 = 1, .samples = 11}),
-      {"coupler.A.y", "not independent"}, &e));
+  EXPECT_TRUE(ThrowsError(running(s, {{"coupler.A.y", [](Jet t) { return 0.1 * cos(t); }}},
+                                  {.t0 = 0, .t1 = 1, .samples = 11}),
+                          {"coupler.A.y", "not independent"}, &e));
   EXPECT_EQ(e.element(), "coupler.A.y");
   EXPECT_NEAR(e.time(), 0.0, 1e-15);
 }
@@ -924,16 +973,16 @@ TEST(Errors, FourBarIndependentCouplerNodeCoordinateIsAccepted) {
 TEST(Errors, ActuatorsMoreThanDof) {
   const System s = fourbar_system(true, true);
   Error e("");
-  EXPECT_TRUE(ThrowsError(
-      running(s, {{"crank.angle", [](Jet t) { return std::numbers::pi / 2 + t; }}}),
-      {"actuator", "1 DOF", "2 actuated"}, &e));
+  EXPECT_TRUE(
+      ThrowsError(running(s, {{"crank.angle", [](Jet t) { return std::numbers::pi / 2 + t; }}}),
+                  {"actuator", "1 DOF", "2 actuated"}, &e));
 }
 
 TEST(Errors, ActuatorsFewerThanDof) {
   const System s = fourbar_system(false, false);
-  EXPECT_TRUE(ThrowsError(
-      running(s, {{"crank.angle", [](Jet t) { return std::numbers::pi / 2 + t; }}}),
-      {"actuator", "1 DOF", "0 actuated"}));
+  EXPECT_TRUE(
+      ThrowsError(running(s, {{"crank.angle", [](Jet t) { return std::numbers::pi / 2 + t; }}}),
+                  {"actuator", "1 DOF", "0 actuated"}));
 }
 
 // The actuator-count message should name the actuated inputs (here crank_pivot.torque and
@@ -941,9 +990,9 @@ TEST(Errors, ActuatorsFewerThanDof) {
 TEST(Errors, ActuatorsMoreThanDofNamesTheInputs) {
   const System s = fourbar_system(true, true);
   Error e("");
-  EXPECT_TRUE(ThrowsError(
-      running(s, {{"crank.angle", [](Jet t) { return std::numbers::pi / 2 + t; }}}),
-      {"crank_pivot.torque", "rocker_pivot.torque"}, &e));
+  EXPECT_TRUE(
+      ThrowsError(running(s, {{"crank.angle", [](Jet t) { return std::numbers::pi / 2 + t; }}}),
+                  {"crank_pivot.torque", "rocker_pivot.torque"}, &e));
   EXPECT_TRUE(NamesItsElement(e));
 }
 
@@ -955,12 +1004,12 @@ TEST(Errors, NonHolonomicModelForInverseDynamics) {
 
 TEST(Errors, InvalidRunOptions) {
   auto ex = mechanisms::slider_crank();
-  EXPECT_TRUE(ThrowsError(running(ex.system, ex.motion, {.t0 = 0, .t1 = 1, .samples = 0}),
-                          {"samples"}));
-  EXPECT_TRUE(ThrowsError(running(ex.system, ex.motion, {.t0 = 1, .t1 = 0, .samples = 10}),
-                          {"t0"}));
-  EXPECT_TRUE(ThrowsError(running(ex.system, ex.motion, {.t0 = 0, .t1 = kNaN, .samples = 10}),
-                          {"t0"}));
+  EXPECT_TRUE(
+      ThrowsError(running(ex.system, ex.motion, {.t0 = 0, .t1 = 1, .samples = 0}), {"samples"}));
+  EXPECT_TRUE(
+      ThrowsError(running(ex.system, ex.motion, {.t0 = 1, .t1 = 0, .samples = 10}), {"t0"}));
+  EXPECT_TRUE(
+      ThrowsError(running(ex.system, ex.motion, {.t0 = 0, .t1 = kNaN, .samples = 10}), {"t0"}));
 }
 
 TEST(Errors, RecursiveComplementOnAFlatModelWithSubsystems) {
@@ -976,9 +1025,8 @@ TEST(Errors, RecursiveComplementOnAFlatModelWithSubsystems) {
 
 TEST(Errors, PrescribedMotionReturningNaN) {
   auto ex = mechanisms::slider_crank();
-  std::vector<Prescribed> p = {{"crank.angle", [](Jet t) {
-                                  return t.v >= 0.5 ? Jet(kNaN) : 4 * t;
-                                }}};
+  std::vector<Prescribed> p = {
+      {"crank.angle", [](Jet t) { return t.v >= 0.5 ? Jet(kNaN) : 4 * t; }}};
   Error e("");
   EXPECT_TRUE(ThrowsError(running(ex.system, p, {.t0 = 0, .t1 = 1, .samples = 201}),
                           {"crank.angle", "not finite", "t = 0.5"}, &e));
@@ -1074,8 +1122,9 @@ TEST(Errors, ResultLookupOfAnUnknownLabel) {
 TEST(Errors, ForceSignalReturningNaNDuringARun) {
   auto ex = mechanisms::slider_crank();
   System s = ex.system;
-  s.add_force({.name = "gas", .body = "rod", .point = {0.2, 0.0},
-               .fx = [](double t) { return t >= 0.5 ? kNaN : -10.0; }});
+  s.add_force({.name = "gas", .body = "rod", .point = {0.2, 0.0}, .fx = [](double t) {
+                 return t >= 0.5 ? kNaN : -10.0;
+               }});
   Error e("");
   EXPECT_TRUE(ThrowsError(running(s, ex.motion, {.t0 = 0, .t1 = 1, .samples = 201}),
                           {"gas", "t = 0.5"}, &e));
@@ -1085,8 +1134,9 @@ TEST(Errors, ForceSignalReturningNaNDuringARun) {
 TEST(Errors, TorqueSignalReturningNaNDuringARun) {
   auto ex = mechanisms::slider_crank();
   System s = ex.system;
-  s.add_torque({.name = "brake", .body = "crank",
-                .torque = [](double t) { return t >= 0.5 ? kNaN : -1.0; }});
+  s.add_torque({.name = "brake", .body = "crank", .torque = [](double t) {
+                  return t >= 0.5 ? kNaN : -1.0;
+                }});
   Error e("");
   EXPECT_TRUE(ThrowsError(running(s, ex.motion, {.t0 = 0, .t1 = 1, .samples = 201}),
                           {"brake", "t = 0.5"}, &e));
@@ -1103,12 +1153,16 @@ TEST(Errors, UserConstraintTurningNaNDuringARun) {
   const double qa0 = 0.5, qb0 = 1 - std::sqrt(qa0);
   s.add_body({.name = "a", .nodes = {{"P", {qa0, 0}}}, .mass = 1});
   s.add_body({.name = "b", .nodes = {{"P", {0, qb0}}}, .mass = 1});
-  s.add_prismatic({.name = "ra", .axis_from = "ground.O", .axis_to = "ground.X", .slider = "a.P",
+  s.add_prismatic({.name = "ra",
+                   .axis_from = "ground.O",
+                   .axis_to = "ground.X",
+                   .slider = "a.P",
                    .actuated = true});
   s.add_prismatic({.name = "rb", .axis_from = "ground.O", .axis_to = "ground.Y", .slider = "b.P"});
   s.add_constraint(PositionConstraintDef{
-      .name = "link", .args = {"ra.q", "rb.q"},
-      .psi = [](std::span<const Jet> x, Jet) { return sqrt(x[0]) + x[1] - Jet(1.0); }});
+      .name = "link", .args = {"ra.q", "rb.q"}, .psi = [](std::span<const Jet> x, Jet) {
+        return sqrt(x[0]) + x[1] - Jet(1.0);
+      }});
   std::vector<Prescribed> p = {{"ra.q", [=](Jet t) { return Jet(qa0) - t; }}};
   Error e("");
   // samples at t = k / 99: the first one past qA = 0 is t = 50 / 99 (qA = -0.005, psi = NaN)
@@ -1121,8 +1175,9 @@ TEST(Errors, UserConstraintTurningNaNDuringARun) {
 TEST(Errors, UserConstraintNaNAtAssemblyNamesTheConstraint) {
   System s = mechanisms::pendulum().system;  // tip at (1, 0)
   s.add_constraint(PositionConstraintDef{
-      .name = "bad", .args = {"link.P.y"},
-      .psi = [](std::span<const Jet> x, Jet) { return sqrt(x[0] - Jet(1.0)); }});
+      .name = "bad", .args = {"link.P.y"}, .psi = [](std::span<const Jet> x, Jet) {
+        return sqrt(x[0] - Jet(1.0));
+      }});
   Error e("");
   EXPECT_TRUE(ThrowsError(building(s), {"bad"}, &e));
   EXPECT_EQ(e.element(), "bad");
@@ -1136,14 +1191,17 @@ TEST(Errors, JointNameUsedTwice) {
   s.add_ground_node("R1", {0, 0}).add_ground_node("R2", {1, 0}).add_ground_node("R3", {0, 1});
   s.add_body({.name = "a", .nodes = {{"P", {0.5, 0}}}, .mass = 1});
   s.add_body({.name = "b", .nodes = {{"P", {0, 0.5}}}, .mass = 1});
-  s.add_prismatic({.name = "rail", .axis_from = "ground.R1", .axis_to = "ground.R2", .slider = "a.P"});
-  s.add_prismatic({.name = "rail", .axis_from = "ground.R1", .axis_to = "ground.R3", .slider = "b.P"});
+  s.add_prismatic(
+      {.name = "rail", .axis_from = "ground.R1", .axis_to = "ground.R2", .slider = "a.P"});
+  s.add_prismatic(
+      {.name = "rail", .axis_from = "ground.R1", .axis_to = "ground.R3", .slider = "b.P"});
   EXPECT_TRUE(ThrowsError(building(s), {"rail", "twice"}));
 }
 
 TEST(Errors, RevoluteNameUsedTwice) {
   System s = crank_only();
   s.add_body({.name = "rod", .nodes = {{"A", {0.1, 0}}, {"B", {0.4, 0}}}, .mass = 1});
-  s.add_revolute({.name = "pivot", .node_a = "crank.A", .node_b = "rod.A"});  // name of crank's pivot
+  s.add_revolute(
+      {.name = "pivot", .node_a = "crank.A", .node_b = "rod.A"});  // name of crank's pivot
   EXPECT_TRUE(ThrowsError(building(s), {"pivot", "twice"}));
 }

@@ -396,8 +396,8 @@ TEST(Forward, UnknownLabelsGetASuggestion) {
   EXPECT_EQ(message([&] { r.rate_column("link.ww"); }),
             "unknown quasi-velocity 'link.ww' (did you mean 'link.w'?)");
   const auto ex = mechanisms::pendulum();
-  const InverseResult inv = inverse_dynamics(build_model(ex.system), ex.motion,
-                                             {.t0 = 0, .t1 = 0.1, .samples = 2});
+  const InverseResult inv =
+      inverse_dynamics(build_model(ex.system), ex.motion, {.t0 = 0, .t1 = 0.1, .samples = 2});
   EXPECT_EQ(message([&] { inv.input("pivot.torqe"); }),
             "unknown input 'pivot.torqe' (did you mean 'pivot.torque'?)");
 }

@@ -14,8 +14,10 @@
 using namespace mo2d;
 
 TEST(Jet, DerivativesMatchFiniteDifferences) {
-  auto f = [](Jet t) { return sin(2 * t) * exp(t / 3) / (1 + t * t) + pow(t + 2, 1.5) +
-                              atan2(t + 0.3, 1 - t) + sqrt(t + 4) * log(t + 3) + tan(t / 4); };
+  auto f = [](Jet t) {
+    return sin(2 * t) * exp(t / 3) / (1 + t * t) + pow(t + 2, 1.5) + atan2(t + 0.3, 1 - t) +
+           sqrt(t + 4) * log(t + 3) + tan(t / 4);
+  };
   const double h = 1e-4;
   for (double t : {-0.7, 0.1, 0.9}) {
     const Jet j = f(Jet(t, 1, 0));
@@ -84,9 +86,11 @@ TEST(Kinematics, AssemblyStaysOnTheNearestBranch) {
     // the coupler's and rocker's shared node is given 2 cm off, lengths kept exact by moving
     // the other node of each body with it
     const Vec2 off(0.02, -0.015);
-    s.add_body({.name = "coupler", .nodes = {{"A", A + off}, {"B", B + off}}, .mass = 1,
-                .inertia = 0.1});
-    s.add_body({.name = "rocker", .nodes = {{"O", Vec2(d, 0) + off}, {"B", B + off}}, .mass = 1,
+    s.add_body(
+        {.name = "coupler", .nodes = {{"A", A + off}, {"B", B + off}}, .mass = 1, .inertia = 0.1});
+    s.add_body({.name = "rocker",
+                .nodes = {{"O", Vec2(d, 0) + off}, {"B", B + off}},
+                .mass = 1,
                 .inertia = 0.1});
     s.add_revolute({.name = "p1", .node_a = "ground.A0", .node_b = "crank.O", .actuated = true});
     s.add_revolute({.name = "p2", .node_a = "crank.A", .node_b = "coupler.A"});

@@ -559,8 +559,7 @@ void check_mechanism(const Mechanism& mech, Table& table) {
     // positions and velocities: the relation compares both (velocities amplify more on some
     // mechanisms: seed 124, positions 1e2, velocities 2e5 x rtol)
     const auto ob = observe(model, flat, b), oa = observe(model, flat, a);
-    amplification =
-        std::max(compare(ob, oa, L, "p:").worst, compare(ob, oa, L, "v:").worst) / 1e-6;
+    amplification = std::max(compare(ob, oa, L, "p:").worst, compare(ob, oa, L, "v:").worst) / 1e-6;
   } catch (const Error&) {  // the cheap runs ran out of steps: treated as unstable
   }
   // The replay itself (CVODE BDF, the default integrator) runs on every mechanism: an unstable

@@ -35,17 +35,20 @@ RingDisc ring_and_disc(double theta0) {
   s.add_body({.name = "ring", .nodes = {{"C", p1}}, .mass = m1, .inertia = m1 * r1 * r1});
   s.add_body({.name = "disc", .nodes = {{"C", p2}}, .mass = m2, .inertia = m2 * r2 * r2 / 2});
   s.add_constraint(PositionConstraintDef{
-      .name = "on_plane", .args = {"ring.C.y"},
-      .psi = [](std::span<const Jet> x, Jet) { return x[0] - r1; }});
-  s.add_constraint(PositionConstraintDef{
-      .name = "inside", .args = {"ring.C.x", "ring.C.y", "disc.C.x", "disc.C.y"},
-      .psi = [](std::span<const Jet> x, Jet) {
-        const Jet dx = x[2] - x[0], dy = x[3] - x[1];
-        return sqrt(dx * dx + dy * dy) - (r1 - r2);
+      .name = "on_plane", .args = {"ring.C.y"}, .psi = [](std::span<const Jet> x, Jet) {
+        return x[0] - r1;
       }});
+  s.add_constraint(PositionConstraintDef{.name = "inside",
+                                         .args = {"ring.C.x", "ring.C.y", "disc.C.x", "disc.C.y"},
+                                         .psi = [](std::span<const Jet> x, Jet) {
+                                           const Jet dx = x[2] - x[0], dy = x[3] - x[1];
+                                           return sqrt(dx * dx + dy * dy) - (r1 - r2);
+                                         }});
   // ring on the plane: contact point at (0, -r1) from the centre: u1 + r1 w1 = 0
   s.add_constraint(VelocityConstraintDef{
-      .name = "ring_rolls", .coords = {}, .rates = {"ring.C.vx", "ring.w"},
+      .name = "ring_rolls",
+      .coords = {},
+      .rates = {"ring.C.vx", "ring.w"},
       .g = [](std::span<const Jet>, std::span<const Jet> v, Jet) { return v[0] + r1 * v[1]; }});
   // disc in the ring: tangential velocities of both bodies equal at the contact point
   // (v1 - v2).t + r1 w1 - r2 w2 = 0, n = (p2 - p1)/|p2 - p1|, t = z x n
@@ -61,7 +64,8 @@ RingDisc ring_and_disc(double theta0) {
       }});
   s.set_gravity({g * std::sin(xi), -g * std::cos(xi)});
   Model m = build_model(s);
-  State st = consistent_state(m, {.positions = {}, .velocities = {{"ring.C.vx", 0.0}, {"disc.w", 0.0}}});
+  State st =
+      consistent_state(m, {.positions = {}, .velocities = {{"ring.C.vx", 0.0}, {"disc.w", 0.0}}});
   return {std::move(m), st};
 }
 
@@ -79,9 +83,9 @@ TEST(RingDisc, ModelHasTwoDegreesOfFreedom) {
   EXPECT_EQ(rd.model.dof, 2);
   EXPECT_FALSE(rd.model.holonomic);
   // the thesis's mass ratio for this steady angle
-  const double ratio = std::sin(theta_bar) /
-                           (2 * std::sin(xi) * std::cos(theta_bar - xi) - 3 * std::sin(theta_bar) +
-                            std::sin(xi)) - 1;
+  const double ratio = std::sin(theta_bar) / (2 * std::sin(xi) * std::cos(theta_bar - xi) -
+                                              3 * std::sin(theta_bar) + std::sin(xi)) -
+                       1;
   EXPECT_NEAR(ratio, 8.0 / 67.0, 1e-12);
 }
 
@@ -90,7 +94,8 @@ TEST(RingDisc, ModelHasTwoDegreesOfFreedom) {
 TEST(RingDisc, SteadyRelativeAngle) {
   const RingDisc rd = ring_and_disc(theta_bar);
   const ForwardResult r = forward_dynamics(
-      rd.model, rd.start, {.t0 = 0, .t1 = 2, .samples = 21, .integrator = Integrator::rk4, .step = 1e-3});
+      rd.model, rd.start,
+      {.t0 = 0, .t1 = 2, .samples = 21, .integrator = Integrator::rk4, .step = 1e-3});
   const double accel = 2 * g * std::sin(theta_bar) / (2 * std::cos(theta_bar - xi) + 1);
   const int iu1 = r.rate_column("ring.C.vx"), iu2 = r.rate_column("disc.C.vx");
   for (int i = 0; i < r.time.size(); ++i) {
@@ -104,12 +109,11 @@ TEST(RingDisc, SteadyRelativeAngle) {
 // (Example 4.7): w^2 = -G, G given in closed form in (e).
 TEST(RingDisc, SmallOscillationFrequencyOfTheLinearizedModel) {
   const double th = theta_bar;
-  const double G =
-      2 * g * (std::cos(th) + 2 * std::cos(xi)) * std::sin(xi) /
-      ((2 * std::cos(th - xi) + 1) *
-       (2 * std::sin(th) + 3 * std::sin(2 * th - xi) - 2 * std::sin(xi) + 2 * std::sin(th - 2 * xi) +
-        std::sin(2 * th - 3 * xi)) *
-       (r1 - r2));
+  const double G = 2 * g * (std::cos(th) + 2 * std::cos(xi)) * std::sin(xi) /
+                   ((2 * std::cos(th - xi) + 1) *
+                    (2 * std::sin(th) + 3 * std::sin(2 * th - xi) - 2 * std::sin(xi) +
+                     2 * std::sin(th - 2 * xi) + std::sin(2 * th - 3 * xi)) *
+                    (r1 - r2));
   ASSERT_LT(G, 0);
   const double period = 2 * std::numbers::pi / std::sqrt(-G);
   const double delta = 1e-3;
@@ -121,11 +125,14 @@ TEST(RingDisc, SmallOscillationFrequencyOfTheLinearizedModel) {
   // period from the two downward crossings of theta - theta_bar (linear interpolation)
   std::vector<double> crossings;
   for (int i = 1; i < r.time.size(); ++i) {
-    const double a = theta_of(rd.model, r, i - 1) - theta_bar, b = theta_of(rd.model, r, i) - theta_bar;
-    if (a > 0 && b <= 0) crossings.push_back(r.time[i - 1] + (r.time[i] - r.time[i - 1]) * a / (a - b));
+    const double a = theta_of(rd.model, r, i - 1) - theta_bar,
+                 b = theta_of(rd.model, r, i) - theta_bar;
+    if (a > 0 && b <= 0)
+      crossings.push_back(r.time[i - 1] + (r.time[i] - r.time[i - 1]) * a / (a - b));
   }
   ASSERT_GE(crossings.size(), 2u);
   const double measured = crossings[1] - crossings[0];
   // the nonlinear period differs from the linearized one by O(delta^2) ~ 1e-6 (measured: 8.3e-8)
-  EXPECT_NEAR(measured / period, 1.0, 1e-6) << "measured " << measured << " s, linearized " << period << " s";
+  EXPECT_NEAR(measured / period, 1.0, 1e-6)
+      << "measured " << measured << " s, linearized " << period << " s";
 }

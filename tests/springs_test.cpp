@@ -16,9 +16,16 @@ Model mass_on_rail(double k, double c) {
   System s("oscillator");
   s.add_ground_node("L", {0, 0}).add_ground_node("R", {1, 0});
   s.add_body({.name = "block", .nodes = {{"P", {0.8, 0}}}, .mass = 2.0});
-  s.add_prismatic({.name = "rail", .axis_from = "ground.L", .axis_to = "ground.R", .slider = "block.P"});
-  s.add_spring({.name = "spring", .body_a = "ground", .point_a = {0, 0}, .body_b = "block",
-                .point_b = {0.8, 0}, .rest_length = 0.5, .stiffness = k, .damping = c});
+  s.add_prismatic(
+      {.name = "rail", .axis_from = "ground.L", .axis_to = "ground.R", .slider = "block.P"});
+  s.add_spring({.name = "spring",
+                .body_a = "ground",
+                .point_a = {0, 0},
+                .body_b = "block",
+                .point_b = {0.8, 0},
+                .rest_length = 0.5,
+                .stiffness = k,
+                .damping = c});
   return build_model(s);
 }
 }  // namespace
@@ -43,8 +50,14 @@ TEST(Springs, DampedEnergyBalance) {
   const Model model = mass_on_rail(50.0, 1.5);
   const State s = consistent_state(model, {.positions = {}, .velocities = {{"rail.v", 0.4}}});
   for (auto integ : {Integrator::rk4, Integrator::cvode_bdf}) {
-    const ForwardResult r = forward_dynamics(
-        model, s, {.t0 = 0, .t1 = 3, .samples = 31, .integrator = integ, .rtol = 1e-10, .atol = 1e-10, .step = 1e-3});
+    const ForwardResult r = forward_dynamics(model, s,
+                                             {.t0 = 0,
+                                              .t1 = 3,
+                                              .samples = 31,
+                                              .integrator = integ,
+                                              .rtol = 1e-10,
+                                              .atol = 1e-10,
+                                              .step = 1e-3});
     const VectorXd total = r.kinetic + r.potential + r.dissipated;
     EXPECT_LE((total.array() - total[0]).abs().maxCoeff(), 1e-7 * total[0]) << to_string(integ);
     EXPECT_GT(r.dissipated[r.time.size() - 1], 0.5 * total[0]) << to_string(integ);  // it did damp
@@ -57,11 +70,15 @@ TEST(Springs, TorsionalSpringAtARevoluteJoint) {
   const double m = 1.5, L = 0.8, k = 4.0, I = m * L * L / 12;
   System s("torsion");
   s.add_ground_node("O", {0, 0});
-  s.add_body({.name = "bar", .nodes = {{"O", {0, 0}}, {"E", {L * std::cos(0.3), L * std::sin(0.3)}}},
-              .mass = m, .inertia = I, .com = CenterOfMass::between("O", "E", 0.5)});
+  s.add_body({.name = "bar",
+              .nodes = {{"O", {0, 0}}, {"E", {L * std::cos(0.3), L * std::sin(0.3)}}},
+              .mass = m,
+              .inertia = I,
+              .com = CenterOfMass::between("O", "E", 0.5)});
   s.add_revolute({.name = "pivot", .node_a = "ground.O", .node_b = "bar.O"});
   s.add_coordinate({.name = "bar.angle", .rate = {{"bar.w", 1.0}}});
-  s.add_torsional_spring({.name = "coil", .joint = "pivot", .stiffness = k, .damping = 0, .rest = 0.0});
+  s.add_torsional_spring(
+      {.name = "coil", .joint = "pivot", .stiffness = k, .damping = 0, .rest = 0.0});
   const Model model = build_model(s);
   const State st = consistent_state(model, {.positions = {}, .velocities = {{"bar.w", 0.0}}});
   const double w = std::sqrt(k / (m * L * L / 3));
@@ -86,15 +103,21 @@ TEST(Springs, BadDefinitionsAreRefused) {
     }
     return std::string("no error");
   };
-  EXPECT_NE(building({.name = "s", .body_a = "ground", .body_b = "blok", .point_b = {1, 0}, .stiffness = 1})
-                .find("did you mean 'block'"),
-            std::string::npos);
-  EXPECT_NE(building({.name = "s", .body_a = "ground", .body_b = "block", .point_b = {1, 0}, .stiffness = -1})
-                .find("stiffness"),
-            std::string::npos);
-  EXPECT_NE(building({.name = "s", .body_a = "ground", .body_b = "block", .point_b = {2, 0}, .stiffness = 1})
-                .find("one node"),
-            std::string::npos);
+  EXPECT_NE(
+      building(
+          {.name = "s", .body_a = "ground", .body_b = "blok", .point_b = {1, 0}, .stiffness = 1})
+          .find("did you mean 'block'"),
+      std::string::npos);
+  EXPECT_NE(
+      building(
+          {.name = "s", .body_a = "ground", .body_b = "block", .point_b = {1, 0}, .stiffness = -1})
+          .find("stiffness"),
+      std::string::npos);
+  EXPECT_NE(
+      building(
+          {.name = "s", .body_a = "ground", .body_b = "block", .point_b = {2, 0}, .stiffness = 1})
+          .find("one node"),
+      std::string::npos);
   EXPECT_NE(building({.name = "s", .body_a = "ground", .body_b = "ground", .stiffness = 1})
                 .find("two ground points"),
             std::string::npos);
@@ -107,11 +130,19 @@ TEST(Springs, SpringOnABodyPinnedAwayFromTheOrigin) {
   for (double ax : {0.0, 1.0, -3.5}) {
     System s("offset_pivot");
     s.add_ground_node("A", {ax, 0});
-    s.add_body({.name = "rod", .nodes = {{"A", {ax, 0}}, {"P", {ax + 1, 0}}}, .mass = 1,
-                .inertia = 1.0 / 12, .com = CenterOfMass::between("A", "P", 0.5)});
+    s.add_body({.name = "rod",
+                .nodes = {{"A", {ax, 0}}, {"P", {ax + 1, 0}}},
+                .mass = 1,
+                .inertia = 1.0 / 12,
+                .com = CenterOfMass::between("A", "P", 0.5)});
     s.add_revolute({.name = "pivot", .node_a = "ground.A", .node_b = "rod.A"});
-    s.add_spring({.name = "s", .body_a = "ground", .point_a = {ax + 0.5, 1}, .body_b = "rod",
-                  .point_b = {ax + 0.5, 0}, .rest_length = 1, .stiffness = 100});
+    s.add_spring({.name = "s",
+                  .body_a = "ground",
+                  .point_a = {ax + 0.5, 1},
+                  .body_b = "rod",
+                  .point_b = {ax + 0.5, 0},
+                  .rest_length = 1,
+                  .stiffness = 100});
     const Model model = build_model(s);
     EXPECT_NEAR(potential_energy(model, model.q0), 0.0, 1e-12) << "ax = " << ax;
     const State st = consistent_state(model, {.positions = {}, .velocities = {{"rod.w", 0.0}}});

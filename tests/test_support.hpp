@@ -2,14 +2,14 @@
 // Shared helpers for the validation tests: an energy function written independently of the
 // solver (centre of mass and rotation rate recomputed from node positions and velocities).
 #include <Eigen/Core>
+#include <Eigen/LU>
 #include <cmath>
 #include <string>
+#include <vector>
 
 #include "mo2d/inverse.hpp"
 #include "mo2d/model.hpp"
 #include "mo2d/system.hpp"
-#include <Eigen/LU>
-#include <vector>
 
 namespace mo2d::test {
 

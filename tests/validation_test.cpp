@@ -106,10 +106,12 @@ TEST(Validation, PowerBalanceDetectsWrongModel) {
     for (const auto& c : s.coordinates()) out.add_coordinate(c);
     s = out;
   };
-  EXPECT_GT(run([&](System& s) { with_body(s, "lever", [](BodyDef& b) { b.inertia *= 1.05; }); }), 1e-4);
+  EXPECT_GT(run([&](System& s) { with_body(s, "lever", [](BodyDef& b) { b.inertia *= 1.05; }); }),
+            1e-4);
   EXPECT_GT(run([&](System& s) { with_body(s, "rod", [](BodyDef& b) { b.mass *= 1.05; }); }), 1e-4);
   EXPECT_GT(run([&](System& s) {
-              with_body(s, "lever", [](BodyDef& b) { b.com = CenterOfMass::between("O", "B", 0.6); });
+              with_body(s, "lever",
+                        [](BodyDef& b) { b.com = CenterOfMass::between("O", "B", 0.6); });
             }),
             1e-4);
 }
@@ -133,11 +135,21 @@ void expect_lagrange_agrees(mechanisms::Example ex, double tol) {
 }
 }  // namespace
 
-TEST(Validation, WhitworthLagrangeAgrees) { expect_lagrange_agrees(mechanisms::whitworth(), 1e-9); }
-TEST(Validation, Rrr3LagrangeAgrees) { expect_lagrange_agrees(mechanisms::rrr3(), 1e-9); }
-TEST(Validation, FourbarLagrangeAgrees) { expect_lagrange_agrees(mechanisms::fourbar(), 1e-9); }
-TEST(Validation, SliderCrankLagrangeAgrees) { expect_lagrange_agrees(mechanisms::slider_crank(), 1e-9); }
-TEST(Validation, PendulumLagrangeAgrees) { expect_lagrange_agrees(mechanisms::pendulum(), 1e-9); }
+TEST(Validation, WhitworthLagrangeAgrees) {
+  expect_lagrange_agrees(mechanisms::whitworth(), 1e-9);
+}
+TEST(Validation, Rrr3LagrangeAgrees) {
+  expect_lagrange_agrees(mechanisms::rrr3(), 1e-9);
+}
+TEST(Validation, FourbarLagrangeAgrees) {
+  expect_lagrange_agrees(mechanisms::fourbar(), 1e-9);
+}
+TEST(Validation, SliderCrankLagrangeAgrees) {
+  expect_lagrange_agrees(mechanisms::slider_crank(), 1e-9);
+}
+TEST(Validation, PendulumLagrangeAgrees) {
+  expect_lagrange_agrees(mechanisms::pendulum(), 1e-9);
+}
 
 TEST(Validation, PendulumClosedForm) {
   for (double theta0 : {0.0, 0.7, -2.0}) {
@@ -305,7 +317,8 @@ TEST(Validation, Rrr3KinematicsMatchDifferences) {
                                                            {"leg3.pivot.torque", "leg3.proximal"}});
 }
 TEST(Validation, SliderCrankKinematicsMatchDifferences) {
-  expect_kinematics_match_differences(mechanisms::slider_crank(), {{"crank_pivot.torque", "crank"}});
+  expect_kinematics_match_differences(mechanisms::slider_crank(),
+                                      {{"crank_pivot.torque", "crank"}});
 }
 TEST(Validation, FourbarKinematicsMatchDifferences) {
   expect_kinematics_match_differences(mechanisms::fourbar(), {{"crank_pivot.torque", "crank"}});

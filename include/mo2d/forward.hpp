@@ -65,8 +65,8 @@ struct ForwardOptions {
   Formulation formulation = Formulation::augmented_lagrangian;
   double rtol = 1e-8, atol = 1e-10;  // CVODE and dopri5 tolerances (atol in SI units)
   double step = 1e-3;  // fixed step (rk4, baumgarte); shortened so that steps end on output times
-  double baumgarte_alpha = 20.0;     // 1/s, velocity-constraint feedback of the baumgarte mode
-  double penalty = 0;                // augmented Lagrangian alpha (0: chosen from the mass scale)
+  double baumgarte_alpha = 20.0;  // 1/s, velocity-constraint feedback of the baumgarte mode
+  double penalty = 0;             // augmented Lagrangian alpha (0: chosen from the mass scale)
   // Budgets (mo2d/budget.hpp): accepted steps over the whole run (all integrators; a fixed-step
   // run needing more is refused before it starts) and wall-clock seconds (<= 0 or inf: none).
   // When one runs out, forward_dynamics throws an Error naming the time reached and the steps.

@@ -16,9 +16,15 @@ struct Jet {
   static constexpr Jet variable(double value) { return {value, 1.0, 0.0}; }
 };
 
-inline Jet operator+(Jet a, Jet b) { return {a.v + b.v, a.d + b.d, a.dd + b.dd}; }
-inline Jet operator-(Jet a, Jet b) { return {a.v - b.v, a.d - b.d, a.dd - b.dd}; }
-inline Jet operator-(Jet a) { return {-a.v, -a.d, -a.dd}; }
+inline Jet operator+(Jet a, Jet b) {
+  return {a.v + b.v, a.d + b.d, a.dd + b.dd};
+}
+inline Jet operator-(Jet a, Jet b) {
+  return {a.v - b.v, a.d - b.d, a.dd - b.dd};
+}
+inline Jet operator-(Jet a) {
+  return {-a.v, -a.d, -a.dd};
+}
 inline Jet operator*(Jet a, Jet b) {
   return {a.v * b.v, a.d * b.v + a.v * b.d, a.dd * b.v + 2 * a.d * b.d + a.v * b.dd};
 }
@@ -30,10 +36,18 @@ inline Jet operator/(Jet a, Jet b) {
   const double inv = 1.0 / b.v;
   return a * chain(b, inv, -inv * inv, 2 * inv * inv * inv);
 }
-inline Jet& operator+=(Jet& a, Jet b) { return a = a + b; }
-inline Jet& operator-=(Jet& a, Jet b) { return a = a - b; }
-inline Jet& operator*=(Jet& a, Jet b) { return a = a * b; }
-inline Jet& operator/=(Jet& a, Jet b) { return a = a / b; }
+inline Jet& operator+=(Jet& a, Jet b) {
+  return a = a + b;
+}
+inline Jet& operator-=(Jet& a, Jet b) {
+  return a = a - b;
+}
+inline Jet& operator*=(Jet& a, Jet b) {
+  return a = a * b;
+}
+inline Jet& operator/=(Jet& a, Jet b) {
+  return a = a / b;
+}
 
 inline Jet sin(Jet a) {
   const double s = std::sin(a.v), c = std::cos(a.v);
@@ -51,7 +65,9 @@ inline Jet exp(Jet a) {
   const double e = std::exp(a.v);
   return chain(a, e, e, e);
 }
-inline Jet log(Jet a) { return chain(a, std::log(a.v), 1 / a.v, -1 / (a.v * a.v)); }
+inline Jet log(Jet a) {
+  return chain(a, std::log(a.v), 1 / a.v, -1 / (a.v * a.v));
+}
 inline Jet sqrt(Jet a) {
   const double r = std::sqrt(a.v);
   return chain(a, r, 0.5 / r, -0.25 / (r * a.v));
@@ -62,8 +78,12 @@ inline Jet pow(Jet a, double p) {
   const double f2 = p * (p - 1) * std::pow(a.v, p - 2);
   return chain(a, f0, f1, f2);
 }
-inline Jet pow(Jet a, Jet b) { return exp(b * log(a)); }
-inline Jet abs(Jet a) { return a.v < 0 ? -a : a; }
+inline Jet pow(Jet a, Jet b) {
+  return exp(b * log(a));
+}
+inline Jet abs(Jet a) {
+  return a.v < 0 ? -a : a;
+}
 inline Jet atan2(Jet y, Jet x) {
   // d atan2 = (x dy - y dx) / r2, computed through the quotient rule on components.
   const Jet r2 = x * x + y * y;
@@ -74,7 +94,11 @@ inline Jet atan2(Jet y, Jet x) {
   const double dd = num.dd / r2.v - num.d * r2.d / (r2.v * r2.v);
   return {v, d, dd};
 }
-inline Jet min(Jet a, Jet b) { return a.v <= b.v ? a : b; }
-inline Jet max(Jet a, Jet b) { return a.v >= b.v ? a : b; }
+inline Jet min(Jet a, Jet b) {
+  return a.v <= b.v ? a : b;
+}
+inline Jet max(Jet a, Jet b) {
+  return a.v >= b.v ? a : b;
+}
 
 }  // namespace mo2d

@@ -37,16 +37,16 @@ struct BuildOptions {
   // mechanism's size (diagonal of the box around all nodes). Node positions define every body's
   // shape, so a larger gap is refused (it would silently change a link's length).
   double joint_tolerance = 1e-6;
-  bool assemble = true;               // assemble the initial configuration and check ranks
+  bool assemble = true;                   // assemble the initial configuration and check ranks
   double max_memory = kDefaultMaxMemory;  // bytes of dense matrices for that; above: refused
 };
 
 // A body-local slot: node k of a body has slots 2k (x) and 2k+1 (y); the rotation rate has 2n.
 struct NodeRef {
-  int var = -1;    // index of x in q0 (and q1); y is var + 1; -1: fixed node (ground)
+  int var = -1;      // index of x in q0 (and q1); y is var + 1; -1: fixed node (ground)
   Vec2 fixed{0, 0};  // position when var == -1
-  int body = -1;   // body index, -1 for ground
-  int local = -1;  // node index within the body
+  int body = -1;     // body index, -1 for ground
+  int local = -1;    // node index within the body
 };
 struct OmegaRef {
   int var = -1;   // index in q1; -1: zero (ground, or a body without rotation)
@@ -67,29 +67,37 @@ struct Body {
   OmegaRef omega;              // rotation rate (var -1 if the body has none)
   bool has_omega = false;      // >= 2 nodes, or one node with inertia > 0
   double mass = 0, inertia = 0;
-  int ci = 0, cj = -1;         // centre of mass by local nodes (cj = -1: at node ci)
-  double gamma = 0, rho = 0;   // Example 2.6 (b)
-  double l01 = 0;              // distance of nodes 0 and 1 (rigid rows)
-  std::vector<Vec2> frame;     // node k >= 2: p_k = p_0 + a d + b z x d, d = p_1 - p_0
-  int owner = 0;               // subsystem tree node
-  int offset = 0;              // first local slot in a concatenation over all bodies
+  int ci = 0, cj = -1;        // centre of mass by local nodes (cj = -1: at node ci)
+  double gamma = 0, rho = 0;  // Example 2.6 (b)
+  double l01 = 0;             // distance of nodes 0 and 1 (rigid rows)
+  std::vector<Vec2> frame;    // node k >= 2: p_k = p_0 + a d + b z x d, d = p_1 - p_0
+  int owner = 0;              // subsystem tree node
+  int offset = 0;             // first local slot in a concatenation over all bodies
   int slots() const { return 2 * static_cast<int>(geometry.size()) + 1; }
 };
 
-enum class ConstraintKind { rigid, revolute, prismatic, slot, coordinate, user_position, user_velocity };
+enum class ConstraintKind {
+  rigid,
+  revolute,
+  prismatic,
+  slot,
+  coordinate,
+  user_position,
+  user_velocity
+};
 
 struct Constraint {
   ConstraintKind kind;
   std::string name;
   int owner = 0;
-  int body = -1;           // rigid
-  NodeRef a, b;            // revolute (a on body 1, b on body 2)
-  NodeRef i, j, s;         // prismatic/slot: axis i -> j (body 1), slider s (body 2)
-  int q = -1;              // slider coordinate
-  double length = 0;       // |p_j - p_i| (constant)
+  int body = -1;      // rigid
+  NodeRef a, b;       // revolute (a on body 1, b on body 2)
+  NodeRef i, j, s;    // prismatic/slot: axis i -> j (body 1), slider s (body 2)
+  int q = -1;         // slider coordinate
+  double length = 0;  // |p_j - p_i| (constant)
   int body1 = -1, body2 = -1;
   bool lock_position = false, lock_velocity = false;
-  double lock_angle = 0;   // theta_2 - theta_1 at the initial configuration
+  double lock_angle = 0;  // theta_2 - theta_1 at the initial configuration
   OmegaRef w1, w2;
   // extra coordinate: d/dt q[coord] = sum rate_terms; position invariant
   //   q[coord] - sum coord_terms - sum angle_terms(theta_body) - offset = 0 (mod 2 pi if angles)
@@ -150,10 +158,10 @@ struct TorsionalLoad {
 struct MergeEdge {
   int parent_body = -1;  // -1: ground
   int child_body = -1;
-  int child_slot = -1;   // body-local slot of x (node) or of the rotation
+  int child_slot = -1;  // body-local slot of x (node) or of the rotation
   bool rotation = false;
-  int reaction = -1;     // first reaction column it fills (x, y; or the torque)
-  double sign = 1;       // +1 if the child is the joint's body 2
+  int reaction = -1;             // first reaction column it fills (x, y; or the torque)
+  double sign = 1;               // +1 if the child is the joint's body 2
   std::vector<int> child_edges;  // edges whose parent is this edge's child at the same slot
 };
 
@@ -178,7 +186,7 @@ struct Model {
   int dof = 0;         // n1 - rank(A) at the initial configuration
   bool holonomic = true;
   Reduction reduction = Reduction::flat;
-  double scale = 1;    // characteristic length (m)
+  double scale = 1;  // characteristic length (m)
 
   std::vector<std::string> coordinate_labels;  // n0
   std::vector<std::string> rate_labels;        // n1
@@ -194,7 +202,7 @@ struct Model {
   std::vector<Input> inputs;
   std::vector<Reaction> reactions;
   std::vector<MergeEdge> merge_edges;  // in post-order (children before parents)
-  int n_slots = 0;  // local slots of all bodies
+  int n_slots = 0;                     // local slots of all bodies
   int n_reactions() const { return static_cast<int>(reactions.size()); }
   int n_inputs() const { return static_cast<int>(inputs.size()); }
 
@@ -209,7 +217,7 @@ struct Model {
 
   std::vector<std::string> input_labels() const;     // Model::inputs[k].label
   std::vector<std::string> reaction_labels() const;  // Model::reactions[k].label
-  int coordinate(const std::string& label) const;  // throws Error naming the label
+  int coordinate(const std::string& label) const;    // throws Error naming the label
   int rate(const std::string& label) const;
 };
 

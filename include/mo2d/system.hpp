@@ -9,7 +9,8 @@
 //  - a revolute joint between node_a (body 1) and node_b (body 2): the actuator torque u acts on
 //    body 2 and -u on body 1, so its power is u * (omega_2 - omega_1); the reaction (Fx, Fy) is the
 //    force that body 1 exerts on body 2 at the joint;
-//  - a prismatic joint / pin-in-slot: the axis is fixed in the body of axis_from/axis_to, the slider
+//  - a prismatic joint / pin-in-slot: the axis is fixed in the body of axis_from/axis_to, the
+//  slider
 //    node belongs to body 2; the slider coordinate q is the signed distance of the slider node from
 //    axis_from towards axis_to (eq. 5.31, corrected); the actuator force u pushes body 2 along
 //    +axis (power u * q_dot); (Fx, Fy) is the force of the joint on body 2 at the slider node
@@ -70,23 +71,24 @@ struct CenterOfMass {
 
 struct BodyDef {
   std::string name{};
-  std::vector<NodeDef> nodes{};// one node: a point mass (with a rotation only if inertia > 0)
-  double mass = 0;             // kg, >= 0
-  double inertia = 0;          // kg m^2 about the centre of mass, >= 0
+  std::vector<NodeDef> nodes{};  // one node: a point mass (with a rotation only if inertia > 0)
+  double mass = 0;               // kg, >= 0
+  double inertia = 0;            // kg m^2 about the centre of mass, >= 0
   std::optional<CenterOfMass> com{};  // default: the first node
 };
 
 struct RevoluteDef {
   std::string name{};
-  std::string node_a{}, node_b{};  // "body.node" or "ground.node"; node_b's variables are eliminated
-  bool actuated = false;       // adds the input "name.torque"
+  std::string node_a{},
+      node_b{};           // "body.node" or "ground.node"; node_b's variables are eliminated
+  bool actuated = false;  // adds the input "name.torque"
 };
 
 struct PrismaticDef {
   std::string name{};
-  std::string axis_from{}, axis_to{};// two nodes of body 1 ("ground.node" allowed)
-  std::string slider{};              // node of body 2
-  bool actuated = false;           // adds the input "name.force"
+  std::string axis_from{}, axis_to{};  // two nodes of body 1 ("ground.node" allowed)
+  std::string slider{};                // node of body 2
+  bool actuated = false;               // adds the input "name.force"
 };
 
 struct PinInSlotDef {
@@ -109,7 +111,7 @@ struct CoordinateDef {
 // User constraint at position level: psi(x, t) = 0, x = the coordinates named in args.
 struct PositionConstraintDef {
   std::string name{};
-  std::vector<std::string> args{};// coordinate labels ("crank.A.x", "slide.q", "crank.angle")
+  std::vector<std::string> args{};  // coordinate labels ("crank.A.x", "slide.q", "crank.angle")
   std::function<Jet(std::span<const Jet> x, Jet t)> psi{};
 };
 

@@ -1,9 +1,8 @@
 // A pendulum built with the mo2d API: a link pivoted at the ground with a 1 kg point mass at its
 // tip, an actuated pivot, and the inverse dynamics for a prescribed angle theta(t).
-#include <mo2d/mo2d.hpp>
-
 #include <cmath>
 #include <cstdio>
+#include <mo2d/mo2d.hpp>
 #include <vector>
 
 int main() {
@@ -25,8 +24,7 @@ int main() {
               model.n1, model.dof);
 
   // theta(t) evaluated on a Jet gives theta, theta' and theta'' exactly.
-  const std::vector<Prescribed> motion = {
-      {"link.angle", [](Jet t) { return 0.5 * sin(3.0 * t); }}};
+  const std::vector<Prescribed> motion = {{"link.angle", [](Jet t) { return 0.5 * sin(3.0 * t); }}};
   InverseOptions run;
   run.t0 = 0;
   run.t1 = 2;

@@ -25,8 +25,8 @@ void require_finite(const Eigen::MatrixXd& x, const char* field, const char* wha
   for (Eigen::Index i = 0; i < x.rows(); ++i)
     for (Eigen::Index j = 0; j < x.cols(); ++j)
       if (!std::isfinite(x(i, j))) {
-        std::fprintf(stderr, "%s returned a non-finite %s(%ld, %ld) without an error\n", what, field,
-                     static_cast<long>(i), static_cast<long>(j));
+        std::fprintf(stderr, "%s returned a non-finite %s(%ld, %ld) without an error\n", what,
+                     field, static_cast<long>(i), static_cast<long>(j));
         std::abort();
       }
 }
