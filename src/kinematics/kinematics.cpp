@@ -7,7 +7,7 @@
 #include <cmath>
 #include <sstream>
 
-#include "constraints.hpp"
+#include "constraints/constraints.hpp"
 #include "mo2d/error.hpp"
 
 namespace mo2d {

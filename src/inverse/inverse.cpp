@@ -9,14 +9,14 @@
 #include <ctime>
 #include <sstream>
 
-#include "constraints.hpp"
-#include "cpu_time.hpp"
+#include "constraints/constraints.hpp"
+#include "run/cpu_time.hpp"
 #include "mo2d/dynamics.hpp"
 #include "mo2d/error.hpp"
 #include "mo2d/kinematics.hpp"
 #include "mo2d/suggest.hpp"
-#include "result_rows.hpp"
-#include "run_budget.hpp"
+#include "output/result_rows.hpp"
+#include "run/run_budget.hpp"
 
 namespace mo2d {
 

@@ -10,8 +10,8 @@
 #include <memory>
 #include <sstream>
 
-#include "cpu_time.hpp"
-#include "forward_data.hpp"
+#include "run/cpu_time.hpp"
+#include "forward/forward_data.hpp"
 #include "mo2d/detail/small_lu.hpp"
 #include "mo2d/dynamics.hpp"
 #include "mo2d/error.hpp"

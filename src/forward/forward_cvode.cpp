@@ -14,11 +14,11 @@
 #include <sstream>
 #include <vector>
 
-#include "forward_data.hpp"
+#include "forward/forward_data.hpp"
 #include "mo2d/dynamics.hpp"
 #include "mo2d/error.hpp"
 #include "mo2d/kinematics.hpp"
-#include "run_budget.hpp"
+#include "run/run_budget.hpp"
 
 namespace mo2d::detail {
 namespace {

@@ -7,7 +7,7 @@
 
 #include "mo2d/error.hpp"
 #include "mo2d/model.hpp"
-#include "run_budget.hpp"
+#include "run/run_budget.hpp"
 
 namespace mo2d {
 

@@ -3,11 +3,11 @@
 
 #include <Eigen/LU>
 
-#include "cpu_time.hpp"
+#include "run/cpu_time.hpp"
 #include "mo2d/dynamics.hpp"
 #include "mo2d/error.hpp"
 #include "mo2d/kinematics.hpp"
-#include "result_rows.hpp"
+#include "output/result_rows.hpp"
 
 namespace mo2d {
 

@@ -9,7 +9,7 @@
 #include "mo2d/detail/reactions.hpp"
 #include "mo2d/detail/small_lu.hpp"
 #include "mo2d/forward.hpp"
-#include "run_budget.hpp"
+#include "run/run_budget.hpp"
 
 namespace mo2d::detail {
 

@@ -1,17 +1,17 @@
 // Forward dynamics, one evaluation: accelerations in three formulations, projection on the
 // constraint manifolds, reactions of a recorded state, and the output recorder.
-#include "forward_data.hpp"
+#include "forward/forward_data.hpp"
 
 #include <Eigen/QR>
 #include <algorithm>
 #include <cmath>
 #include <sstream>
 
-#include "constraints.hpp"
+#include "constraints/constraints.hpp"
 #include "mo2d/dynamics.hpp"
 #include "mo2d/error.hpp"
 #include "mo2d/kinematics.hpp"
-#include "result_rows.hpp"
+#include "output/result_rows.hpp"
 
 namespace mo2d::detail {
 

@@ -10,10 +10,10 @@
 #include <array>
 #include <cmath>
 
-#include "forward_data.hpp"
+#include "forward/forward_data.hpp"
 #include "mo2d/dynamics.hpp"
 #include "mo2d/error.hpp"
-#include "run_budget.hpp"
+#include "run/run_budget.hpp"
 
 namespace mo2d::detail {
 namespace {

@@ -14,7 +14,7 @@
 #include <set>
 #include <sstream>
 
-#include "constraints.hpp"
+#include "constraints/constraints.hpp"
 #include "mo2d/budget.hpp"
 #include "mo2d/error.hpp"
 #include "mo2d/kinematics.hpp"

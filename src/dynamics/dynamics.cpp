@@ -3,7 +3,7 @@
 
 #include <string>
 
-#include "constraints.hpp"
+#include "constraints/constraints.hpp"
 #include "mo2d/error.hpp"
 
 namespace mo2d {
