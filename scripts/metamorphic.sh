@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # Nightly-style metamorphic run: scripts/metamorphic.sh [SEED] [COUNT] [BUILD_DIR]
-# Runs the metamorphic suite of mo2d_tests (tests/metamorphic_test.cpp) on COUNT generated
+# Runs the metamorphic suite of mo2d_tests (tests/metamorphic/metamorphic_test.cpp) on COUNT generated
 # mechanisms with seeds SEED .. SEED+COUNT-1 and prints the summary table (relation, mechanisms,
 # checks, failures, worst deviation). A failure names its seed; reproduce it alone with
 #   MO2D_META_SEED=<seed> MO2D_META_COUNT=1 build/tests/mo2d_tests --gtest_filter=Metamorphic.*

@@ -1,9 +1,9 @@
 #pragma once
-// Generator of random valid mechanisms for the metamorphic tests (tests/metamorphic_test.cpp,
-// docs/testing.md). A mechanism is first generated as plain data (Mechanism: positions, masses,
-// load amplitudes, motion parameters), so that each metamorphic transformation (translate,
-// rotate, mirror, scale, reorder) is applied exactly to the data; to_system() then writes the
-// mo2d::System a user would write.
+// Generator of random valid mechanisms for the metamorphic tests
+// (tests/metamorphic/metamorphic_test.cpp, docs/testing.md). A mechanism is first generated as
+// plain data (Mechanism: positions, masses, load amplitudes, motion parameters), so that each
+// metamorphic transformation (translate, rotate, mirror, scale, reorder) is applied exactly to the
+// data; to_system() then writes the mo2d::System a user would write.
 //
 // Geometry is consistent by construction: the nodes are placed first, then the bodies are defined
 // from those positions (a node shared by two bodies has the same coordinates in both).

@@ -1,10 +1,9 @@
-// Kinematics building blocks: exact Jet derivatives, constraint Jacobians against finite
-// differences, assembly on the nearest branch, rank and conditioning, labels.
+// Kinematics building blocks: constraint Jacobians against finite differences, assembly on the
+// nearest branch, rank and conditioning.
 #include <gtest/gtest.h>
 
 #include <algorithm>
 #include <cmath>
-#include <cstdio>
 #include <numbers>
 
 #include "mo2d/mechanisms.hpp"
@@ -12,21 +11,6 @@
 #include "test_support.hpp"
 
 using namespace mo2d;
-
-TEST(Jet, DerivativesMatchFiniteDifferences) {
-  auto f = [](Jet t) {
-    return sin(2 * t) * exp(t / 3) / (1 + t * t) + pow(t + 2, 1.5) + atan2(t + 0.3, 1 - t) +
-           sqrt(t + 4) * log(t + 3) + tan(t / 4);
-  };
-  const double h = 1e-4;
-  for (double t : {-0.7, 0.1, 0.9}) {
-    const Jet j = f(Jet(t, 1, 0));
-    const double fp = f(Jet(t + h)).v, fm = f(Jet(t - h)).v, f0 = f(Jet(t)).v;
-    EXPECT_NEAR(j.v, f0, 1e-15);
-    EXPECT_NEAR(j.d, (fp - fm) / (2 * h), 1e-7);
-    EXPECT_NEAR(j.dd, (fp - 2 * f0 + fm) / (h * h), 1e-5);
-  }
-}
 
 namespace {
 void expect_position_jacobian_matches(const mechanisms::Example& ex) {
@@ -136,48 +120,4 @@ TEST(Kinematics, RegularMechanismsAreWellConditioned) {
     EXPECT_EQ(degrees_of_freedom(m, m.q0).velocity, m.dof) << m.name;
     EXPECT_EQ(degrees_of_freedom(m, m.q0).position, m.dof) << m.name;
   }
-}
-
-TEST(Model, LabelsAndCounts) {
-  const Model m = build_model(mechanisms::rrr3().system);
-  EXPECT_EQ(m.dof, 3);
-  EXPECT_NO_THROW(m.coordinate("platform.angle"));
-  EXPECT_NO_THROW(m.coordinate("platform.C.x"));
-  EXPECT_EQ(m.coordinate("platform.P2.x"), m.coordinate("leg2.distal.P.x"));  // merged node
-  EXPECT_NO_THROW(m.rate("leg2.proximal.w"));
-  std::vector<std::string> inputs, reactions;
-  for (const auto& in : m.inputs) inputs.push_back(in.label);
-  for (const auto& r : m.reactions) reactions.push_back(r.label);
-  EXPECT_EQ(inputs, (std::vector<std::string>{"leg1.pivot.torque", "leg2.pivot.torque",
-                                              "leg3.pivot.torque"}));
-  EXPECT_NE(std::find(reactions.begin(), reactions.end(), "leg2.elbow.Fx"), reactions.end());
-  EXPECT_NE(std::find(reactions.begin(), reactions.end(), "attach3.Fy"), reactions.end());
-  const std::string text = describe(m);
-  EXPECT_NE(text.find("3 DOF"), std::string::npos);
-  EXPECT_NE(text.find("leg1.pivot.torque"), std::string::npos);
-  const Model w = build_model(mechanisms::whitworth().system);
-  EXPECT_EQ(w.n0, 9);
-  EXPECT_EQ(w.n1, 12);
-  EXPECT_EQ(w.dof, 1);
-  EXPECT_NO_THROW(w.coordinate("slide.q"));
-  EXPECT_NO_THROW(w.coordinate("crank_pin.q"));
-}
-
-TEST(Output, CsvHasLabelledHeaderAndIsWrittenAtomically) {
-  auto ex = mechanisms::pendulum();
-  const Model m = build_model(ex.system);
-  InverseOptions o = ex.run;
-  o.samples = 5;
-  const InverseResult r = inverse_dynamics(m, ex.motion, o);
-  const std::string csv = inverse_csv(r);
-  EXPECT_EQ(csv.substr(0, csv.find('\n')).find("t,link.P.x,link.P.y,link.angle"), 0u);
-  EXPECT_NE(csv.find("pivot.torque"), std::string::npos);
-  EXPECT_NE(csv.find("pivot.Fx"), std::string::npos);
-  EXPECT_EQ(std::count(csv.begin(), csv.end(), '\n'), 6);
-  const std::string path = ::testing::TempDir() + "/mo2d_csv_test.csv";
-  write_inverse_csv(r, path);
-  std::FILE* f = std::fopen(path.c_str(), "rb");
-  ASSERT_NE(f, nullptr);
-  std::fclose(f);
-  EXPECT_THROW(write_inverse_csv(r, "/nonexistent-dir/x.csv"), Error);
 }
