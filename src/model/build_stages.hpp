@@ -53,7 +53,9 @@ struct Owned {
 };
 
 // Every definition of the System tree in one list per kind, in depth-first order (a system's own
-// definitions, then its instances in order). Written by flatten; read by every later stage.
+// definitions, then its instances in order). Written by flatten; read by every later stage. Body
+// names are prefixed; every other definition keeps its local name (full name: prefix + def.name)
+// and its node references are resolved from its prefix.
 struct Flat {
   std::vector<TreeNode> tree;             // subsystem tree; tree[0] is the root (vars, rows empty)
   std::vector<std::string> ground_names;  // full labels "left.ground.O"
@@ -100,6 +102,9 @@ struct AxisJoint {
   bool merged = false;  // that lock is eliminated by merging the two rotation rates (eq. 5.30)
 };
 
+// (gamma, rho) of point p on a body's first two nodes (Example 2.6 (b)):
+// p = p_0 + gamma d + rho z x d with d = p_1 - p_0, for its initial node positions `geometry`.
+Vec2 on_first_two_nodes(const std::vector<Vec2>& geometry, const Vec2& p);
 // Names may not contain '.', ',' or spaces (they are joined into labels).
 void check_name(const std::string& name, const std::string& what);
 void check_gravity(const Vec2& gravity);
@@ -146,7 +151,8 @@ Reduced reduce(const Flat& flat, const Elements& el, const BuildOptions& options
 // labels and indices of m, m.fixed_coordinates, m.rate_refs, every Body::nodes and Body::omega,
 // and TreeNode::vars.
 struct Numbering {
-  std::vector<int> node_var;      // E, at root elements: -1 fixed (ground), else index of x in q0
+  std::vector<int> node_var;      // E, at root elements: -1 fixed (ground), else index of x in q0;
+                                  // -2 at the other elements
   std::vector<int> prismatic_q;   // per prismatic joint: index of its slider coordinate
   std::vector<int> slot_q;        // per pin-in-slot joint: index of its slider coordinate
   std::vector<int> coordinate_q;  // per extra coordinate: its index

@@ -4,15 +4,12 @@
 // their stiffness and damping (dynamics/ evaluates them).
 #include <cmath>
 
-#include "constraints/constraints.hpp"
 #include "mo2d/error.hpp"
 #include "mo2d/suggest.hpp"
 #include "model/build_stages.hpp"
 
 namespace mo2d::build {
 namespace {
-
-using detail::perp;
 
 int find_body(const Model& m, const std::string& prefix, const std::string& name,
               const std::string& what) {
@@ -32,11 +29,11 @@ void add_forces(const Flat& flat, Model& m) {
     l.body = find_body(m, f.prefix, f.def.body, what);
     const Body& b = m.bodies[l.body];
     if (b.nodes.size() >= 2) {
-      const Vec2 dd = b.geometry[1] - b.geometry[0], r = f.def.point - b.geometry[0];
+      const Vec2 gr = on_first_two_nodes(b.geometry, f.def.point);
       l.ci = 0;
       l.cj = 1;
-      l.gamma = r.dot(dd) / dd.squaredNorm();
-      l.rho = r.dot(perp(dd)) / dd.squaredNorm();
+      l.gamma = gr.x();
+      l.rho = gr.y();
     } else if ((f.def.point - b.geometry[0]).norm() > 1e-12 * m.scale) {
       throw Error(what + ": body '" + b.name + "' has one node: the force must act at it", l.name);
     }
@@ -66,11 +63,11 @@ BodyPoint body_point(const Model& m, const std::string& prefix, const std::strin
   bp.body = find_body(m, prefix, body, what);
   const Body& b = m.bodies[bp.body];
   if (b.geometry.size() >= 2) {
-    const Vec2 dd = b.geometry[1] - b.geometry[0], r = p - b.geometry[0];
+    const Vec2 gr = on_first_two_nodes(b.geometry, p);
     bp.ci = 0;
     bp.cj = 1;
-    bp.gamma = r.dot(dd) / dd.squaredNorm();
-    bp.rho = r.dot(perp(dd)) / dd.squaredNorm();
+    bp.gamma = gr.x();
+    bp.rho = gr.y();
   } else if ((p - b.geometry[0]).norm() > 1e-12 * m.scale) {
     throw Error(what + ": body '" + b.name + "' has one node: the point must be the node", b.name);
   }

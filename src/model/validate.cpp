@@ -24,7 +24,7 @@ std::string num(double v) {
   return s.str();
 }
 std::string point_str(const Vec2& p) {
-  return "(" + num(p.x()) + ", " + num(p.y()) + ")";
+  return std::string("(") + num(p.x()) + ", " + num(p.y()) + ")";
 }
 
 // The initial positions define each body's shape (its node distances and angles), so the copies
@@ -87,11 +87,11 @@ void place_centre_of_mass(const BodyDef& d, double scale, Body& b) {
                       d.name);
         break;
       }
-      const Vec2 dd = b.geometry[1] - b.geometry[0], r = com.point - b.geometry[0];
+      const Vec2 gr = on_first_two_nodes(b.geometry, com.point);
       b.ci = 0;
       b.cj = 1;
-      b.gamma = r.dot(dd) / dd.squaredNorm();
-      b.rho = r.dot(perp(dd)) / dd.squaredNorm();
+      b.gamma = gr.x();
+      b.rho = gr.y();
       break;
     }
   }
@@ -129,10 +129,7 @@ Body make_body(const Owned<BodyDef>& owned, double scale) {
                       "reference nodes)",
                   d.name);
     b.frame.assign(n, Vec2(0, 0));
-    for (int k = 2; k < n; ++k) {
-      const Vec2 r = b.geometry[k] - b.geometry[0];
-      b.frame[k] = {r.dot(dd) / dd.squaredNorm(), r.dot(perp(dd)) / dd.squaredNorm()};
-    }
+    for (int k = 2; k < n; ++k) b.frame[k] = on_first_two_nodes(b.geometry, b.geometry[k]);
   }
   place_centre_of_mass(d, scale, b);
   return b;
@@ -185,6 +182,11 @@ constexpr AxisJointWords kSlot{"pin-in-slot joint", "pin",
                                "the pin must belong to another body than the slot", false};
 
 }  // namespace
+
+Vec2 on_first_two_nodes(const std::vector<Vec2>& geometry, const Vec2& p) {
+  const Vec2 dd = geometry[1] - geometry[0], r = p - geometry[0];
+  return {r.dot(dd) / dd.squaredNorm(), r.dot(perp(dd)) / dd.squaredNorm()};
+}
 
 void check_name(const std::string& name, const std::string& what) {
   if (name.empty()) throw Error(what + " has an empty name", what);
