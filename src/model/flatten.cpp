@@ -1,0 +1,126 @@
+// Stage 1 of build_model: flatten the tree of subsystems (Orsino, Theorem 2.10). Every definition
+// is copied with its owner (the subsystem tree node) and its instance prefix; names are prefixed
+// by the instance path and positions are placed in the world frame by composing the placements of
+// the enclosing instances. Names are checked here, where each is seen in its own system.
+#include <cmath>
+#include <set>
+
+#include "mo2d/error.hpp"
+#include "model/build_stages.hpp"
+
+namespace mo2d::build {
+namespace {
+
+struct Frame {  // world = R p + o
+  double angle = 0;
+  Vec2 offset{0, 0};
+  Vec2 apply(const Vec2& p) const { return Placement{offset, angle}.apply(p); }
+  Frame compose(const Placement& child) const {  // this o child
+    return {angle + child.angle, apply(child.offset)};
+  }
+};
+
+void flatten_bodies(const System& s, const std::string& prefix, const Frame& frame, int tree_index,
+                    Flat& out) {
+  for (const auto& g : s.ground()) {
+    check_name(g.name, "ground node");
+    out.ground_names.push_back(prefix + "ground." + g.name);
+    out.ground_pos.push_back(frame.apply(g.position));
+  }
+  for (const auto& b : s.bodies()) {
+    check_name(b.name, "body");
+    if (b.name == "ground") throw Error("body name 'ground' is reserved for the base body", b.name);
+    BodyDef w = b;
+    for (auto& n : w.nodes) {
+      check_name(n.name, "node of body '" + prefix + b.name + "'");
+      n.position = frame.apply(n.position);
+    }
+    if (w.com && w.com->kind == CenterOfMass::Kind::point) w.com->point = frame.apply(w.com->point);
+    w.name = prefix + b.name;
+    out.bodies.push_back({std::move(w), tree_index, prefix});
+  }
+}
+
+void flatten_joints(const System& s, const std::string& prefix, int tree_index, Flat& out) {
+  for (const auto& j : s.revolutes()) {
+    check_name(j.name, "revolute joint");
+    out.revolutes.push_back({j, tree_index, prefix});
+  }
+  for (const auto& j : s.prismatics()) {
+    check_name(j.name, "prismatic joint");
+    out.prismatics.push_back({j, tree_index, prefix});
+  }
+  for (const auto& j : s.slots()) {
+    check_name(j.name, "pin-in-slot joint");
+    out.slots.push_back({j, tree_index, prefix});
+  }
+  for (const auto& c : s.coordinates()) {  // a label: dots allowed ("crank.angle")
+    if (c.name.empty() || c.name.find_first_of(", ") != std::string::npos)
+      throw Error("coordinate '" + c.name + "': a coordinate needs a name without ',' or spaces",
+                  c.name);
+    out.coordinates.push_back({c, tree_index, prefix});
+  }
+  for (const auto& c : s.position_constraints()) {
+    check_name(c.name, "constraint");
+    out.pos.push_back({c, tree_index, prefix});
+  }
+  for (const auto& c : s.velocity_constraints()) {
+    check_name(c.name, "constraint");
+    out.vel.push_back({c, tree_index, prefix});
+  }
+}
+
+void flatten_loads(const System& s, const std::string& prefix, const Frame& frame, int tree_index,
+                   Flat& out) {
+  for (const auto& f : s.forces()) {
+    ForceDef w = f;
+    w.point = frame.apply(f.point);
+    const double c = std::cos(frame.angle), sn = std::sin(frame.angle);
+    if (f.fx || f.fy) {  // rotate the force vector into the world frame
+      Signal fx = f.fx, fy = f.fy;
+      w.fx = [fx, fy, c, sn](double t) { return c * (fx ? fx(t) : 0.0) - sn * (fy ? fy(t) : 0.0); };
+      w.fy = [fx, fy, c, sn](double t) { return sn * (fx ? fx(t) : 0.0) + c * (fy ? fy(t) : 0.0); };
+    }
+    out.forces.push_back({std::move(w), tree_index, prefix});
+  }
+  for (const auto& t : s.torques()) out.torques.push_back({t, tree_index, prefix});
+  for (const auto& sp : s.springs()) {
+    SpringDef w = sp;
+    w.point_a = frame.apply(sp.point_a);
+    w.point_b = frame.apply(sp.point_b);
+    out.springs.push_back({std::move(w), tree_index, prefix});
+  }
+  for (const auto& ts : s.torsional_springs()) out.torsional.push_back({ts, tree_index, prefix});
+}
+
+void flatten(const System& s, const std::string& prefix, const Frame& frame, int tree_index,
+             Flat& out) {
+  flatten_bodies(s, prefix, frame, tree_index, out);
+  flatten_joints(s, prefix, tree_index, out);
+  flatten_loads(s, prefix, frame, tree_index, out);
+  if (tree_index != 0 && s.gravity() != Vec2(0, 0))
+    throw Error("subsystem '" + prefix.substr(0, prefix.size() - 1) +
+                    "' sets gravity: gravity belongs to the root system",
+                prefix.substr(0, prefix.size() - 1));
+  std::set<std::string> seen;
+  for (const auto& inst : s.instances()) {
+    check_name(inst.name, "instance");
+    if (!seen.insert(inst.name).second)
+      throw Error("instance name '" + prefix + inst.name + "' is used twice", prefix + inst.name);
+    const int child = static_cast<int>(out.tree.size());
+    out.tree.push_back({prefix + inst.name, tree_index, {}, {}, {}});
+    out.tree[tree_index].children.push_back(child);
+    flatten(*inst.system, prefix + inst.name + ".", frame.compose(inst.placement), child, out);
+  }
+}
+
+}  // namespace
+
+Flat flatten(const System& system) {
+  Flat flat;
+  flat.tree.push_back({"", -1, {}, {}, {}});
+  flatten(system, "", Frame{}, 0, flat);
+  return flat;
+}
+
+}  // namespace mo2d::build

@@ -1,0 +1,153 @@
+// Stage 6 of build_model: applied loads. A point is stored by local nodes like the centre of mass
+// (Example 2.6 (b): p = p_0 + gamma d + rho z x d, d = p_1 - p_0) so that it moves with its body;
+// point forces and torques take their values from signals, springs and torsional springs from
+// their stiffness and damping (dynamics/ evaluates them).
+#include <cmath>
+
+#include "mo2d/error.hpp"
+#include "mo2d/suggest.hpp"
+#include "model/build_stages.hpp"
+
+namespace mo2d::build {
+namespace {
+
+int find_body(const Model& m, const std::string& prefix, const std::string& name,
+              const std::string& what) {
+  for (int bi = 0; bi < static_cast<int>(m.bodies.size()); ++bi)
+    if (m.bodies[bi].name == prefix + name) return bi;
+  std::vector<std::string> names;
+  for (const auto& b : m.bodies) names.push_back(b.name);
+  throw Error(what + ": unknown body '" + prefix + name + "'" + did_you_mean(prefix + name, names),
+              prefix + name);
+}
+
+void add_forces(const Flat& flat, Model& m) {
+  for (const auto& f : flat.forces) {
+    const std::string what = "force '" + f.prefix + f.def.name + "'";
+    PointLoad l;
+    l.name = f.prefix + f.def.name;
+    l.body = find_body(m, f.prefix, f.def.body, what);
+    const Body& b = m.bodies[l.body];
+    if (b.nodes.size() >= 2) {
+      const Vec2 gr = on_first_two_nodes(b.geometry, f.def.point);
+      l.ci = 0;
+      l.cj = 1;
+      l.gamma = gr.x();
+      l.rho = gr.y();
+    } else if ((f.def.point - b.geometry[0]).norm() > 1e-12 * m.scale) {
+      throw Error(what + ": body '" + b.name + "' has one node: the force must act at it", l.name);
+    }
+    l.fx = f.def.fx;
+    l.fy = f.def.fy;
+    m.forces.push_back(std::move(l));
+  }
+  for (const auto& t : flat.torques) {
+    const std::string what = "torque '" + t.prefix + t.def.name + "'";
+    TorqueLoad l;
+    l.name = t.prefix + t.def.name;
+    l.body = find_body(m, t.prefix, t.def.body, what);
+    if (!m.bodies[l.body].has_omega)
+      throw Error(what + ": body '" + m.bodies[l.body].name + "' has no rotation", l.name);
+    l.torque = t.def.torque;
+    m.torques.push_back(std::move(l));
+  }
+}
+
+BodyPoint body_point(const Model& m, const std::string& prefix, const std::string& body,
+                     const Vec2& p, const std::string& what) {
+  BodyPoint bp;
+  if (body == "ground") {
+    bp.fixed = p;
+    return bp;
+  }
+  bp.body = find_body(m, prefix, body, what);
+  const Body& b = m.bodies[bp.body];
+  if (b.geometry.size() >= 2) {
+    const Vec2 gr = on_first_two_nodes(b.geometry, p);
+    bp.ci = 0;
+    bp.cj = 1;
+    bp.gamma = gr.x();
+    bp.rho = gr.y();
+  } else if ((p - b.geometry[0]).norm() > 1e-12 * m.scale) {
+    throw Error(what + ": body '" + b.name + "' has one node: the point must be the node", b.name);
+  }
+  return bp;
+}
+
+void nonnegative(double v, const std::string& what, const char* field, const std::string& el) {
+  if (!std::isfinite(v) || v < 0)
+    throw Error(what + ": " + field + " must be finite and >= 0 (got " + std::to_string(v) + ")",
+                el);
+}
+
+void add_springs(const Flat& flat, Model& m) {
+  for (const auto& sp : flat.springs) {
+    const std::string name = sp.prefix + sp.def.name;
+    const std::string what = "spring '" + name + "'";
+    check_name(sp.def.name, "spring");
+    nonnegative(sp.def.rest_length, what, "rest_length", name);
+    nonnegative(sp.def.stiffness, what, "stiffness", name);
+    nonnegative(sp.def.damping, what, "damping", name);
+    SpringLoad l;
+    l.name = name;
+    l.a = body_point(m, sp.prefix, sp.def.body_a, sp.def.point_a, what);
+    l.b = body_point(m, sp.prefix, sp.def.body_b, sp.def.point_b, what);
+    if (l.a.body < 0 && l.b.body < 0) throw Error(what + " joins two ground points", name);
+    l.rest_length = sp.def.rest_length;
+    l.stiffness = sp.def.stiffness;
+    l.damping = sp.def.damping;
+    m.springs.push_back(std::move(l));
+  }
+}
+
+// A torsional spring acts across a revolute joint: between its two bodies, with the rest angle
+// theta_2 - theta_1 of the initial configuration unless given.
+void add_torsional_springs(const Flat& flat, const Elements& el, const Reduced& red, Model& m) {
+  for (const auto& ts : flat.torsional) {
+    const std::string name = ts.prefix + ts.def.name;
+    const std::string what = "torsional spring '" + name + "'";
+    check_name(ts.def.name, "torsional spring");
+    nonnegative(ts.def.stiffness, what, "stiffness", name);
+    nonnegative(ts.def.damping, what, "damping", name);
+    int found = -1;
+    for (size_t k = 0; k < flat.revolutes.size(); ++k)
+      if (flat.revolutes[k].prefix + flat.revolutes[k].def.name == ts.prefix + ts.def.joint)
+        found = static_cast<int>(k);
+    if (found < 0) {
+      std::vector<std::string> names;
+      for (const auto& j : flat.revolutes) names.push_back(j.prefix + j.def.name);
+      throw Error(what + ": unknown revolute joint '" + ts.prefix + ts.def.joint + "'" +
+                      did_you_mean(ts.prefix + ts.def.joint, names),
+                  name);
+    }
+    TorsionalLoad l;
+    l.name = name;
+    l.body1 = el.body[red.revolutes[found][0]];
+    l.body2 = el.body[red.revolutes[found][1]];
+    auto angle0 = [&](int body) {
+      if (body < 0) return 0.0;
+      const Body& b = m.bodies[body];
+      if (b.geometry.size() < 2)
+        throw Error(what + ": body '" + b.name + "' has one node and no orientation", name);
+      const Vec2 d = b.geometry[1] - b.geometry[0];
+      return std::atan2(d.y(), d.x());
+    };
+    const double implied = angle0(l.body2) - angle0(l.body1);
+    if (ts.def.rest && !std::isfinite(*ts.def.rest))
+      throw Error(what + ": rest angle not finite", name);
+    l.rest = ts.def.rest.value_or(implied);
+    l.stiffness = ts.def.stiffness;
+    l.damping = ts.def.damping;
+    m.torsional_springs.push_back(std::move(l));
+  }
+}
+
+}  // namespace
+
+void add_loads(const Flat& flat, const Elements& el, const Reduced& red, Model& m) {
+  add_forces(flat, m);
+  add_springs(flat, m);
+  add_torsional_springs(flat, el, red, m);
+}
+
+}  // namespace mo2d::build

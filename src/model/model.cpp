@@ -1,0 +1,64 @@
+// Model: label lookups and the positions derived from a body's nodes.
+#include "mo2d/model.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+#include "constraints/constraints.hpp"
+#include "mo2d/error.hpp"
+#include "mo2d/suggest.hpp"
+
+namespace mo2d {
+
+using detail::perp;
+
+std::vector<std::string> Model::input_labels() const {
+  std::vector<std::string> out;
+  for (const auto& in : inputs) out.push_back(in.label);
+  return out;
+}
+
+std::vector<std::string> Model::reaction_labels() const {
+  std::vector<std::string> out;
+  for (const auto& r : reactions) out.push_back(r.label);
+  return out;
+}
+
+int Model::coordinate(const std::string& label) const {
+  auto it = coordinate_index.find(label);
+  if (it == coordinate_index.end() && fixed_coordinates.count(label))
+    throw Error("coordinate '" + label + "' is fixed (its node is joined to the ground)", label);
+  if (it == coordinate_index.end()) {
+    std::vector<std::string> names;
+    for (const auto& [k, v] : coordinate_index) names.push_back(k);
+    std::sort(names.begin(), names.end());
+    throw Error("unknown coordinate '" + label + "'" + did_you_mean(label, names), label);
+  }
+  return it->second;
+}
+
+int Model::rate(const std::string& label) const {
+  auto it = rate_index.find(label);
+  if (it == rate_index.end()) {
+    std::vector<std::string> names;
+    for (const auto& [k, v] : rate_index) names.push_back(k);
+    std::sort(names.begin(), names.end());
+    throw Error("unknown quasi-velocity '" + label + "'" + did_you_mean(label, names), label);
+  }
+  return it->second;
+}
+
+Vec2 com_position(const Body& b, const Eigen::Ref<const Eigen::VectorXd>& q0) {
+  const Vec2 pi = node_position(b.nodes[b.ci], q0);
+  if (b.cj < 0) return pi;
+  const Vec2 d = node_position(b.nodes[b.cj], q0) - pi;
+  return pi + b.gamma * d + b.rho * perp(d);
+}
+
+double body_angle(const Body& b, const Eigen::Ref<const Eigen::VectorXd>& q0) {
+  if (b.nodes.size() < 2) return 0.0;
+  const Vec2 d = node_position(b.nodes[1], q0) - node_position(b.nodes[0], q0);
+  return std::atan2(d.y(), d.x());
+}
+
+}  // namespace mo2d
