@@ -11,7 +11,9 @@
 #include "mo2d/error.hpp"
 #include "mo2d/output.hpp"
 
-int main(int argc, char** argv) {
+// Building the command table throws only on a programming error (CLI::ConstructionError, a name
+// registered twice), which should abort; every error of a run is caught below.
+int main(int argc, char** argv) {  // NOLINT(bugprone-exception-escape)
   using namespace mo2d::cli;
   // SIGINT/SIGTERM/SIGHUP remove the temporaries of unfinished output files (mo2d/output.hpp)
   mo2d::remove_temporaries_on_signal();

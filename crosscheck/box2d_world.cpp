@@ -20,14 +20,14 @@ Vec2 perp(const Vec2& d) {
 
 // A point given by local nodes i, j and (gamma, rho) (Example 2.6 (b)) on the geometry.
 Vec2 geometry_point(const Body& b, int ci, int cj, double gamma, double rho) {
-  const Vec2 pi = b.geometry[ci];
+  Vec2 pi = b.geometry[ci];
   if (cj < 0) return pi;
   const Vec2 d = b.geometry[cj] - pi;
   return pi + gamma * d + rho * perp(d);
 }
 
 Vec2 com_velocity(const Body& b, const Eigen::VectorXd& q1) {
-  const Vec2 vi = node_velocity(b.nodes[b.ci], q1);
+  Vec2 vi = node_velocity(b.nodes[b.ci], q1);
   if (b.cj < 0) return vi;
   const Vec2 d = node_velocity(b.nodes[b.cj], q1) - vi;
   return vi + b.gamma * d + b.rho * perp(d);
@@ -292,7 +292,8 @@ void apply_loads(const Model& m, Box2DWorld& w, double t) {
     body->ApplyForce(to_b2(Vec2(fx, fy)), body->GetWorldPoint(to_b2(p)), false);
   }
   for (const TorqueLoad& tl : m.torques)
-    if (tl.body >= 0 && tl.torque) w.bodies[tl.body].body->ApplyTorque(tl.torque(t), false);
+    if (tl.body >= 0 && tl.torque)
+      w.bodies[tl.body].body->ApplyTorque(static_cast<float>(tl.torque(t)), false);
 }
 
 }  // namespace mo2d::crosscheck_detail

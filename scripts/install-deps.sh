@@ -17,6 +17,7 @@ packages=(
   libyaml-cpp-dev            # yaml-cpp 0.7: scene files (mo2d_scene, line/column of every node)
   libcli11-dev               # CLI11 2.1 (header-only): the mo2d command line
   nlohmann-json3-dev         # nlohmann-json 3.11 (header-only): JSON run summaries of mo2d
+  clang-format clang-tidy    # LLVM 14: scripts/check-style.sh (.clang-format, .clang-tidy)
 )
 
 missing=()

@@ -2,6 +2,7 @@
 # Build and test mo2d twice: Release (build/) and Debug with AddressSanitizer and
 # UndefinedBehaviorSanitizer (build-asan/, benchmarks off). Stops at the first failure, so the
 # last lines printed are always the summary of the ctest run that decided the result.
+# MO2D_STYLE_CHECK=1 adds the style checks after the release configuration.
 #   ./scripts/test.sh
 set -euo pipefail
 cd "$(dirname "${BASH_SOURCE[0]}")/.."
@@ -13,9 +14,18 @@ stage() { echo; echo "== $* [$((SECONDS - start)) s]"; }
 stage "dependencies"
 ./scripts/install-deps.sh
 
+# Style (scripts/check-style.sh: clang-format, file and function sizes, clang-tidy; a few minutes)
+# on the release configuration's compile_commands.json. Off until the issue-11 refactor lands
+# (src/ does not pass yet); to make it mandatory, change the default below from 0 to 1.
+style=${MO2D_STYLE_CHECK:-0}
+
 for preset in release debug-asan; do
   stage "${preset}: configure"
   cmake --preset "${preset}"
+  if [[ "${preset}" == release && "${style}" == 1 ]]; then
+    stage "style"
+    ./scripts/check-style.sh build
+  fi
   stage "${preset}: build (${jobs} jobs)"
   cmake --build --preset "${preset}" -j "${jobs}"
   stage "${preset}: test"

@@ -34,7 +34,7 @@ inline Vec2 combine_point(const Vec2& xi, const Vec2& xj, double gamma, double r
 // Velocity (or acceleration, for x = q1 rates) of a body point: a fixed node contributes 0.
 inline Vec2 local_velocity_of_point(const Body& b, const Eigen::Ref<const VectorXd>& x, int ci,
                                     int cj, double gamma, double rho) {
-  const Vec2 vi = node_velocity(b.nodes[ci], x);
+  Vec2 vi = node_velocity(b.nodes[ci], x);
   if (cj < 0) return vi;
   return combine_point(vi, node_velocity(b.nodes[cj], x), gamma, rho);
 }
@@ -43,7 +43,7 @@ inline Vec2 local_velocity_of_point(const Body& b, const Eigen::Ref<const Vector
 // is why positions must never go through the velocity helper above.
 inline Vec2 local_position_of_point(const Body& b, const Eigen::Ref<const VectorXd>& q0, int ci,
                                     int cj, double gamma, double rho) {
-  const Vec2 pi = node_position(b.nodes[ci], q0);
+  Vec2 pi = node_position(b.nodes[ci], q0);
   if (cj < 0) return pi;
   return combine_point(pi, node_position(b.nodes[cj], q0), gamma, rho);
 }

@@ -3,11 +3,11 @@
 
 #include <Eigen/LU>
 
-#include "run/cpu_time.hpp"
 #include "mo2d/dynamics.hpp"
 #include "mo2d/error.hpp"
 #include "mo2d/kinematics.hpp"
 #include "output/result_rows.hpp"
+#include "run/cpu_time.hpp"
 
 namespace mo2d {
 

@@ -219,6 +219,7 @@ void OutputSet::commit() {
   if (dirs.empty()) return;
   std::sort(dirs.begin(), dirs.end());  // one lock order for every run: no deadlock
   std::vector<std::unique_ptr<DirLock>> locks;
+  locks.reserve(dirs.size());
   for (const auto& d : dirs) locks.push_back(std::make_unique<DirLock>(d));
   BlockSignals blocked;
   std::vector<File*> renamed;

@@ -34,8 +34,10 @@ bool is_reserved(const std::string& s) {
                      [&](const char* r) { return s == r; });
 }
 
-// One parameter definition: its text and where it came from (a YAML node or --set).
-struct Definition {
+// One parameter definition: its text and where it came from (a YAML node or --set). Its move
+// assignment may throw (YAML::Node has only a copy assignment, which allocates): harmless here, a
+// throw while reading the parameters leaves no scene.
+struct Definition {  // NOLINT(bugprone-exception-escape)
   YAML::Node node{};
   std::string text{};
   bool from_command_line = false;

@@ -31,7 +31,7 @@ std::string node_ref(const Context& c, const YAML::Node& map, const char* key,
 std::string body_ref(const Context& c, const YAML::Node& map, const char* key,
                      const std::string& what, bool ground_allowed) {
   const YAML::Node n = c.r.required(map, key, what);
-  const std::string name = c.r.string(n, what + "." + key);
+  std::string name = c.r.string(n, what + "." + key);
   if (ground_allowed && name == "ground") return name;
   if (std::find(c.info.bodies.begin(), c.info.bodies.end(), name) == c.info.bodies.end())
     c.r.fail(n, what + "." + key + ": undefined body '" + name + "'" +
@@ -61,7 +61,7 @@ CenterOfMass read_com(const Reader& r, const YAML::Node& node, const BodyDef& b,
   std::vector<std::string> local;
   for (const auto& n : b.nodes) local.push_back(n.name);
   auto check_local = [&](const YAML::Node& n, const std::string& w) {
-    const std::string name = r.string(n, w);
+    std::string name = r.string(n, w);
     if (std::find(local.begin(), local.end(), name) == local.end())
       r.fail(n,
              w + ": body '" + b.name + "' has no node '" + name + "'" + did_you_mean(name, local));
