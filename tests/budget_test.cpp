@@ -15,6 +15,7 @@
 
 #include "mo2d/mo2d.hpp"
 #include "mo2d/scene.hpp"
+#include "output/write_file.hpp"
 
 namespace mo2d {
 namespace {

@@ -50,7 +50,6 @@
 #include "mo2d/error.hpp"
 #include "mo2d/forward.hpp"
 #include "mo2d/inverse.hpp"
-#include "mo2d/lagrange.hpp"
 #include "mo2d/mo2d.hpp"
 
 using namespace mo2d;

@@ -7,11 +7,8 @@
 
 namespace mo2d {
 
-// Write `content` to `path` atomically: a hidden temporary DIR/.NAME.tmp.<pid>.<n> is written,
-// flushed and renamed (removed if SIGINT/SIGTERM ends the process, remove_temporaries_on_signal).
-// While an OutputSet::Scope is alive, the file is added to that set instead (mo2d/output.hpp).
-// The CSV writers refuse a non-finite value (Error naming the column and the time).
-void write_file_atomically(const std::string& path, const std::string& content);
+// The CSV files are written atomically (a temporary, then renamed; mo2d/output.hpp). The writers
+// refuse a non-finite value (Error naming the column and the time).
 
 // Columns: t, coordinates, quasi-velocities, their derivatives (label + ".dot"), efforts,
 // reactions, residual.position, residual.velocity, residual.acceleration.

@@ -14,12 +14,15 @@
 #include <vector>
 
 #include "mo2d/budget.hpp"
-#include "mo2d/detail/reactions.hpp"
-#include "mo2d/detail/small_lu.hpp"
 #include "mo2d/jet.hpp"
 #include "mo2d/model.hpp"
 
 namespace mo2d {
+
+namespace detail {
+class SmallLU;     // dense LU of the small systems of one sample (src/linalg/small_lu.hpp)
+struct SlotEntry;  // an entry of A owned by a body slot, for the reactions (src/dynamics/)
+}  // namespace detail
 
 using Eigen::MatrixXd;
 using Eigen::VectorXd;
@@ -68,6 +71,9 @@ void check_inverse_options(const Model& m, const InverseOptions& options);
 // needs is allocated here once.
 struct InverseData {
   InverseData(const Model& m, std::span<const Prescribed> prescribed, const InverseOptions& o = {});
+  ~InverseData();
+  InverseData(const InverseData&) = delete;
+  InverseData& operator=(const InverseData&) = delete;
 
   InverseOptions options;
   std::vector<int> p_index;  // prescribed coordinate indices
@@ -101,7 +107,7 @@ struct InverseData {
   double near_min = 1, near_t = 0;
   std::string near_what;  // prescribed values and variables at the smallest pivot ratio
   MatrixXd S;  // orthogonal complement C (n1 x dof) used for the efforts of the last sample
-  detail::SmallLU lu_pos, lu_K;  // positions (free coordinates), K = [A; E]
+  std::unique_ptr<detail::SmallLU> lu_pos, lu_K;  // positions (free coordinates), K = [A; E]
   Eigen::PartialPivLU<MatrixXd> lu_u;
   std::vector<double> edge_force;  // per merge edge: 2 (node) or 1 (rotation) values
   std::vector<int> edge_offset;
@@ -139,6 +145,16 @@ struct InverseResult {
 // Whole run: options.samples equally spaced samples in [t0, t1].
 InverseResult inverse_dynamics(const Model& m, std::span<const Prescribed> prescribed,
                                const InverseOptions& options);
+
+// A second formulation, for validation: Lagrange multipliers on the unreduced model
+// (Reduction::none: every joint is a constraint row). At each sample the kinematics are solved
+// as in inverse_dynamics, then accelerations, multipliers and efforts together from
+//   [ M  A^T  -B ] [a1    ]   [ f      ]
+//   [ A  0     0 ] [lambda] = [ c      ]
+//   [ E  0     0 ] [u     ]   [ s_ddot ]
+// so M a1 = f + B u - A^T lambda. Reactions are read from lambda directly.
+InverseResult inverse_dynamics_lagrange(const Model& m, std::span<const Prescribed> prescribed,
+                                        const InverseOptions& options);
 
 // Orthogonal complement S of A (n1 x dof, A S = 0) built recursively over the subsystem tree:
 // S = R C, R = blockdiag(I, S_children), C = null(A_external R) (Theorem 2.10).

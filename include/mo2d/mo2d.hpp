@@ -8,7 +8,6 @@
 #include "mo2d/inverse.hpp"
 #include "mo2d/jet.hpp"
 #include "mo2d/kinematics.hpp"
-#include "mo2d/lagrange.hpp"
 #include "mo2d/model.hpp"
 #include "mo2d/output.hpp"
 #include "mo2d/system.hpp"

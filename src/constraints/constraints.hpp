@@ -17,7 +17,7 @@
 #include <cmath>
 #include <numbers>
 
-#include "mo2d/detail/reactions.hpp"
+#include "dynamics/reactions.hpp"
 #include "mo2d/error.hpp"
 #include "mo2d/model.hpp"
 

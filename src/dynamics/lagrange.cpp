@@ -1,5 +1,5 @@
 // Inverse dynamics with Lagrange multipliers on the unreduced model (validation formulation).
-#include "mo2d/lagrange.hpp"
+#include "mo2d/inverse.hpp"
 
 #include <Eigen/LU>
 

@@ -12,11 +12,11 @@
 
 #include "run/cpu_time.hpp"
 #include "forward/forward_data.hpp"
-#include "mo2d/detail/small_lu.hpp"
+#include "linalg/small_lu.hpp"
 #include "mo2d/dynamics.hpp"
 #include "mo2d/error.hpp"
 #include "mo2d/kinematics.hpp"
-#include "mo2d/suggest.hpp"
+#include "model/suggest.hpp"
 
 namespace mo2d {
 

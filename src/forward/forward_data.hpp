@@ -6,8 +6,8 @@
 #include <string>
 #include <vector>
 
-#include "mo2d/detail/reactions.hpp"
-#include "mo2d/detail/small_lu.hpp"
+#include "dynamics/reactions.hpp"
+#include "linalg/small_lu.hpp"
 #include "mo2d/forward.hpp"
 #include "run/run_budget.hpp"
 

@@ -19,7 +19,7 @@
 #include "mo2d/error.hpp"
 #include "mo2d/kinematics.hpp"
 #include "mo2d/model.hpp"
-#include "mo2d/suggest.hpp"
+#include "model/suggest.hpp"
 
 namespace mo2d {
 namespace {
