@@ -16,6 +16,7 @@
 #include "mo2d/budget.hpp"
 #include "mo2d/jet.hpp"
 #include "mo2d/model.hpp"
+#include "mo2d/trajectory.hpp"
 
 namespace mo2d {
 
@@ -91,7 +92,7 @@ struct InverseData {
   double pivot_ratio = 0;  // min/max |pivot| of the LU of the dimensionless K (a cheap
                            // conditioning indicator)
   // Singular passages and branch jumps found so far (time, prescribed values, variables), in the
-  // order found; inverse_dynamics() copies them to InverseResult::warnings.
+  // order found; inverse_dynamics() copies them to Trajectory::stats.warnings.
   std::vector<std::string> warnings;
 
   // workspace
@@ -126,25 +127,12 @@ void inverse_dynamics_sample(const Model& m, InverseData& d, double t);
 // calls it; needed only when calling inverse_dynamics_sample directly).
 void finish_inverse_warnings(InverseData& d);
 
-struct InverseResult {
-  std::vector<std::string> coordinate_labels, rate_labels, input_labels, reaction_labels;
-  VectorXd time;
-  MatrixXd q0, q1, a1;  // samples x n0 / n1 / n1
-  MatrixXd efforts;     // samples x inputs
-  MatrixXd reactions;   // samples x reactions
-  MatrixXd residuals;   // samples x 3: position, velocity, acceleration (inf norms)
-  double cpu_seconds = 0;
-  // singular configurations passed or approached, and jumps between assembly modes, with the
-  // time and the variables (see InverseOptions)
-  std::vector<std::string> warnings;
-  int column(const std::string& label) const;  // index in coordinate labels
-  int input(const std::string& label) const;
-  int reaction(const std::string& label) const;
-};
-
-// Whole run: options.samples equally spaced samples in [t0, t1].
-InverseResult inverse_dynamics(const Model& m, std::span<const Prescribed> prescribed,
-                               const InverseOptions& options);
+// Whole run: options.samples equally spaced samples in [t0, t1]. The Trajectory (kind inverse)
+// holds every sample's solution and residuals (position, velocity, acceleration); stats: the CPU
+// time and the singular configurations passed or approached, and the jumps between assembly modes,
+// with the time and the variables (see InverseOptions).
+Trajectory inverse_dynamics(const Model& m, std::span<const Prescribed> prescribed,
+                            const InverseOptions& options);
 
 // A second formulation, for validation: Lagrange multipliers on the unreduced model
 // (Reduction::none: every joint is a constraint row). At each sample the kinematics are solved
@@ -153,8 +141,8 @@ InverseResult inverse_dynamics(const Model& m, std::span<const Prescribed> presc
 //   [ A  0     0 ] [lambda] = [ c      ]
 //   [ E  0     0 ] [u     ]   [ s_ddot ]
 // so M a1 = f + B u - A^T lambda. Reactions are read from lambda directly.
-InverseResult inverse_dynamics_lagrange(const Model& m, std::span<const Prescribed> prescribed,
-                                        const InverseOptions& options);
+Trajectory inverse_dynamics_lagrange(const Model& m, std::span<const Prescribed> prescribed,
+                                     const InverseOptions& options);
 
 // Orthogonal complement S of A (n1 x dof, A S = 0) built recursively over the subsystem tree:
 // S = R C, R = blockdiag(I, S_children), C = null(A_external R) (Theorem 2.10).

@@ -11,3 +11,4 @@
 #include "mo2d/model.hpp"
 #include "mo2d/output.hpp"
 #include "mo2d/system.hpp"
+#include "mo2d/trajectory.hpp"

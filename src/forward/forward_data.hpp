@@ -34,7 +34,7 @@ struct ForwardData {
   Eigen::LLT<MatrixXd> llt_red;
   std::vector<int> independent;  // null space: independent quasi-velocities
   double alpha = 0;
-  ForwardStats stats;
+  RunStats stats;
   double last_pivot = 1;
   double accel_residual = 0;  // relative residual of the last augmented-Lagrangian iteration
   bool accel_ok = true;       // the last accelerations are accurate (not regularized away)
@@ -100,7 +100,7 @@ void energy_rates(ForwardData& d, double t, const VectorXd& q0, const VectorXd& 
 
 struct Recorder {
   const Model& m;
-  ForwardResult& r;
+  Trajectory& r;
   ForwardData& d;
   int k = 0;
   // a run of output times below o.singular_warning, reported once at its smallest pivot ratio
@@ -118,7 +118,7 @@ struct Recorder {
 };
 
 // Throws Error naming the first non-finite value of recorded sample k and its time (forward.cpp).
-void check_finite_sample(const Model& m, const ForwardResult& r, int k);
+void check_finite_sample(const Model& m, const Trajectory& r, int k);
 
 // Integrator drivers: integrate from s0 to o.t1, recording every output time.
 void run_explicit_rk(const Model& m, ForwardData& d, const State& s0, const ForwardOptions& o,

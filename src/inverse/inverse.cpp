@@ -11,12 +11,11 @@
 
 #include "constraints/constraints.hpp"
 #include "linalg/small_lu.hpp"
-#include "run/cpu_time.hpp"
 #include "mo2d/dynamics.hpp"
 #include "mo2d/error.hpp"
 #include "mo2d/kinematics.hpp"
-#include "model/suggest.hpp"
 #include "output/result_rows.hpp"
+#include "run/cpu_time.hpp"
 #include "run/run_budget.hpp"
 
 namespace mo2d {
@@ -537,15 +536,17 @@ void finish_inverse_warnings(InverseData& d) {
                        d.near_what + ")");
 }
 
-InverseResult inverse_dynamics(const Model& m, std::span<const Prescribed> prescribed,
-                               const InverseOptions& options) {
+Trajectory inverse_dynamics(const Model& m, std::span<const Prescribed> prescribed,
+                            const InverseOptions& options) {
   InverseData d(m, prescribed, options);
   const int N = options.samples;
-  InverseResult r;
+  Trajectory r;
+  r.kind = RunKind::inverse;
   r.coordinate_labels = m.coordinate_labels;
   r.rate_labels = m.rate_labels;
   r.input_labels = m.input_labels();
   r.reaction_labels = m.reaction_labels();
+  r.residual_labels = {"residual.position", "residual.velocity", "residual.acceleration"};
   r.time.resize(N);
   r.q0.resize(N, m.n0);
   r.q1.resize(N, m.n1);
@@ -577,19 +578,9 @@ InverseResult inverse_dynamics(const Model& m, std::span<const Prescribed> presc
     r.residuals.row(k) << d.residual_position, d.residual_velocity, d.residual_acceleration;
   }
   finish_inverse_warnings(d);
-  r.warnings = d.warnings;
-  r.cpu_seconds = detail::cpu_seconds() - start;
+  r.stats.warnings = d.warnings;
+  r.stats.cpu_seconds = detail::cpu_seconds() - start;
   return r;
-}
-
-int InverseResult::column(const std::string& l) const {
-  return label_index(coordinate_labels, l, "coordinate");
-}
-int InverseResult::input(const std::string& l) const {
-  return label_index(input_labels, l, "input");
-}
-int InverseResult::reaction(const std::string& l) const {
-  return label_index(reaction_labels, l, "reaction");
 }
 
 // ---- recursive orthogonal complement (Theorem 2.10) ---------------------------------------------
