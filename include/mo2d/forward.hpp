@@ -12,6 +12,8 @@
 //    independent quasi-velocities chosen by pivoting (re-chosen when K gets ill-conditioned).
 // After each step the state is projected back on psi(q0) = 0 and A q1 = b (minimum-norm
 // Gauss-Newton, regularized), so constraint drift stays at the solver tolerance.
+// The workspace of these evaluations, and forward_accelerations (one evaluation at a given state):
+// mo2d/forward_data.hpp.
 #include <Eigen/Core>
 #include <functional>
 #include <string>

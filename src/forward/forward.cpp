@@ -10,7 +10,7 @@
 #include <memory>
 #include <sstream>
 
-#include "forward/forward_data.hpp"
+#include "forward/forward_run.hpp"
 #include "linalg/small_lu.hpp"
 #include "mo2d/dynamics.hpp"
 #include "mo2d/error.hpp"
@@ -47,7 +47,6 @@ const char* to_string(Formulation f) {
 }
 
 using detail::fmt;
-using detail::ForwardData;
 using detail::Recorder;
 
 void detail::check_finite_sample(const Model& m, const Trajectory& r, int k) {
@@ -209,8 +208,8 @@ bool fixed_step(Integrator i) {
   return i == Integrator::rk4 || i == Integrator::baumgarte;
 }
 
-// Dense matrices of the forward workspace (forward_data.hpp) and of CVODE's BDF (Jacobian and its
-// saved copy), and the recorded results: bytes, estimated from the sizes.
+// Dense matrices of the forward workspace (mo2d/forward_data.hpp) and of CVODE's BDF (Jacobian and
+// its saved copy), and the recorded results: bytes, estimated from the sizes.
 double forward_memory_bytes(const Model& m, const ForwardOptions& o) {
   const double n0 = m.n0, n1 = m.n1, m0 = m.m0, m1 = m.m1;
   double dense =

@@ -14,7 +14,7 @@
 #include <sstream>
 #include <vector>
 
-#include "forward/forward_data.hpp"
+#include "forward/forward_run.hpp"
 #include "mo2d/dynamics.hpp"
 #include "mo2d/error.hpp"
 #include "mo2d/kinematics.hpp"
