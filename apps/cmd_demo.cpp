@@ -34,18 +34,19 @@ int demo(const DemoOptions& o) {
                 "' (expected whitworth, rrr3, slider_crank, fourbar or pendulum)");
   const mechanisms::Example ex = it->second();
   const Model model = build_model(ex.system);
-  const InverseResult r = inverse_dynamics(model, ex.motion, ex.run);
+  const Trajectory r = inverse_dynamics(model, ex.motion, ex.run);
 
   std::printf("mo2d inverse dynamics: %s\n", model.name.c_str());
   print_inverse_table(model, r, ex.run);
   OutputSet files;  // the CSV and the pictures land together or not at all
   {
     OutputSet::Scope scope(files);
-    write_inverse_csv(r, (std::filesystem::path(o.out) / (o.mechanism + "_inverse.csv")).string());
+    write_trajectory_csv(r,
+                         (std::filesystem::path(o.out) / (o.mechanism + "_inverse.csv")).string());
     RenderJob job;
     job.dir = o.out;
     job.name = o.mechanism;
-    render_inverse_run(model, r, job);
+    render_run(model, r, job);
   }
   files.commit();
   for (const auto& p : files.paths()) std::printf("  wrote %s\n", p.c_str());

@@ -21,13 +21,13 @@ int forward(const SceneOptions& o) {
   Progress progress("forward dynamics of '" + model.name + "'", run.t0, run.t1);
   run.progress = [&progress](double t) { progress.update(t); };
   run.monitor = [&progress](const RunProgress& p) { progress.report(p); };
-  const ForwardResult r = forward_dynamics(model, initial, run);
+  const Trajectory r = forward_dynamics(model, initial, run);
   progress.finish();
   std::printf("mo2d forward dynamics: %s\n", model.name.c_str());
   print_forward_table(model, r, run);
   // all outputs land together or not at all (mo2d/output.hpp)
   OutputSet out;
-  if (scene.run.csv) out.add(output_path(o, scene, "forward.csv"), forward_csv(r));
+  if (scene.run.csv) out.add(output_path(o, scene, "forward.csv"), trajectory_csv(r));
   if (scene.run.json)
     out.add(output_path(o, scene, "forward.json"), forward_summary(scene, model, r));
   out.commit();

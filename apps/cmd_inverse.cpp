@@ -24,13 +24,13 @@ int inverse(const SceneOptions& o) {
   check_scene_options(scene, model, run);
   Progress progress("inverse dynamics of '" + model.name + "'", run.t0, run.t1, "samples");
   run.monitor = [&progress](const RunProgress& p) { progress.report(p); };
-  const InverseResult r = inverse_dynamics(model, scene.motion, run);
+  const Trajectory r = inverse_dynamics(model, scene.motion, run);
   progress.finish();
   std::printf("mo2d inverse dynamics: %s\n", model.name.c_str());
   print_inverse_table(model, r, run);
   // all outputs land together or not at all (mo2d/output.hpp)
   OutputSet out;
-  if (scene.run.csv) out.add(output_path(o, scene, "inverse.csv"), inverse_csv(r));
+  if (scene.run.csv) out.add(output_path(o, scene, "inverse.csv"), trajectory_csv(r));
   if (scene.run.json)
     out.add(output_path(o, scene, "inverse.json"), inverse_summary(scene, model, r));
   out.commit();

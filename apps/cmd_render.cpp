@@ -49,19 +49,19 @@ int render(const RenderCliOptions& o) {
   if (forward) {
     const ForwardOptions run = forward_options(scene, model);
     check_scene_options(scene, model, run);
-    const ForwardResult r = forward_dynamics(model, initial_state(scene, model), run);
+    const Trajectory r = forward_dynamics(model, initial_state(scene, model), run);
     std::printf("mo2d render: forward dynamics of %s, %d samples over [%g, %g] s\n",
                 model.name.c_str(), static_cast<int>(r.time.size()), run.t0, run.t1);
-    const RenderOutputs out = render_forward_run(model, r, job);
+    const RenderOutputs out = render_run(model, r, job);
     files.commit();
     print_outputs(out);
   } else {
     const InverseOptions run = inverse_options(scene);
     check_scene_options(scene, model, run);
-    const InverseResult r = inverse_dynamics(model, scene.motion, run);
+    const Trajectory r = inverse_dynamics(model, scene.motion, run);
     std::printf("mo2d render: inverse dynamics of %s, %d samples over [%g, %g] s\n",
                 model.name.c_str(), static_cast<int>(r.time.size()), run.t0, run.t1);
-    const RenderOutputs out = render_inverse_run(model, r, job);
+    const RenderOutputs out = render_run(model, r, job);
     files.commit();
     print_outputs(out);
   }

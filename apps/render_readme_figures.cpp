@@ -18,7 +18,7 @@ int main(int argc, char** argv) {
     using namespace mo2d;
     const mechanisms::Example ex = mechanisms::whitworth();
     const Model model = build_model(ex.system);
-    const InverseResult r = inverse_dynamics(model, ex.motion, ex.run);
+    const Trajectory r = inverse_dynamics(model, ex.motion, ex.run);
 
     // One revolution of the crank (pi/2 rad/s: 4 s), sampled every 10 ms; a frame every 0.5 s
     // from 0.15 s, so that one frame falls on the torque's trough (2.65 s).

@@ -40,7 +40,7 @@ json header(const Scene& s, const Model& m, const char* solve, const Eigen::Vect
 
 }  // namespace
 
-std::string inverse_summary(const Scene& s, const Model& m, const InverseResult& r) {
+std::string inverse_summary(const Scene& s, const Model& m, const Trajectory& r) {
   json j = header(s, m, "inverse", r.time);
   j["efforts"] = peaks(r.input_labels, r.efforts, r.time);
   j["reactions"] = peaks(r.reaction_labels, r.reactions, r.time);
@@ -48,12 +48,12 @@ std::string inverse_summary(const Scene& s, const Model& m, const InverseResult&
   j["max_residuals"] = {{"position", any ? r.residuals.col(0).maxCoeff() : 0.0},
                         {"velocity", any ? r.residuals.col(1).maxCoeff() : 0.0},
                         {"acceleration", any ? r.residuals.col(2).maxCoeff() : 0.0}};
-  j["warnings"] = r.warnings;
-  j["cpu_seconds"] = r.cpu_seconds;
+  j["warnings"] = r.stats.warnings;
+  j["cpu_seconds"] = r.stats.cpu_seconds;
   return j.dump(2) + "\n";
 }
 
-std::string forward_summary(const Scene& s, const Model& m, const ForwardResult& r) {
+std::string forward_summary(const Scene& s, const Model& m, const Trajectory& r) {
   json j = header(s, m, "forward", r.time);
   j["efforts"] = peaks(r.input_labels, r.efforts, r.time);
   j["reactions"] = peaks(r.reaction_labels, r.reactions, r.time);

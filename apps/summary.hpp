@@ -8,7 +8,7 @@
 
 namespace mo2d::cli {
 
-std::string inverse_summary(const Scene& s, const Model& m, const InverseResult& r);
-std::string forward_summary(const Scene& s, const Model& m, const ForwardResult& r);
+std::string inverse_summary(const Scene& s, const Model& m, const Trajectory& r);
+std::string forward_summary(const Scene& s, const Model& m, const Trajectory& r);
 
 }  // namespace mo2d::cli

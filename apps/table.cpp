@@ -5,7 +5,7 @@
 
 namespace mo2d::cli {
 
-void print_inverse_table(const Model& model, const InverseResult& r, const InverseOptions& run) {
+void print_inverse_table(const Model& model, const Trajectory& r, const InverseOptions& run) {
   std::printf(
       "  %d bodies, %d coordinates, %d quasi-velocities, %d DOF, %d samples over [%g, %g] s\n",
       static_cast<int>(model.bodies.size()), model.n0, model.n1, model.dof,
@@ -21,16 +21,16 @@ void print_inverse_table(const Model& model, const InverseResult& r, const Inver
   std::printf("  max constraint residual: position %.2e m, velocity %.2e, acceleration %.2e\n",
               r.residuals.col(0).maxCoeff(), r.residuals.col(1).maxCoeff(),
               r.residuals.col(2).maxCoeff());
-  for (const auto& w : r.warnings) std::printf("  warning: %s\n", w.c_str());
-  std::printf("  CPU time %.3f ms (%.2f us per sample)\n", 1e3 * r.cpu_seconds,
-              1e6 * r.cpu_seconds / static_cast<double>(r.time.size()));
+  for (const auto& w : r.stats.warnings) std::printf("  warning: %s\n", w.c_str());
+  std::printf("  CPU time %.3f ms (%.2f us per sample)\n", 1e3 * r.stats.cpu_seconds,
+              1e6 * r.stats.cpu_seconds / static_cast<double>(r.time.size()));
 }
 
-double energy_error(const ForwardResult& r) {
+double energy_error(const Trajectory& r) {
   return energy_balance_error(r);
 }
 
-void print_forward_table(const Model& model, const ForwardResult& r, const ForwardOptions& run) {
+void print_forward_table(const Model& model, const Trajectory& r, const ForwardOptions& run) {
   std::printf(
       "  %d bodies, %d coordinates, %d quasi-velocities, %d DOF, %d samples over [%g, %g] s\n",
       static_cast<int>(model.bodies.size()), model.n0, model.n1, model.dof,

@@ -5,11 +5,11 @@
 namespace mo2d::cli {
 
 // Sizes, per-input max/min with their times, max residuals and CPU time of an inverse run.
-void print_inverse_table(const Model& model, const InverseResult& r, const InverseOptions& run);
+void print_inverse_table(const Model& model, const Trajectory& r, const InverseOptions& run);
 // Sizes, integrator statistics, residuals and energy balance of a forward run.
-void print_forward_table(const Model& model, const ForwardResult& r, const ForwardOptions& run);
+void print_forward_table(const Model& model, const Trajectory& r, const ForwardOptions& run);
 
 // max |E(t) - E(t0) - W_inputs(t) + D(t)| with E = kinetic + potential (J).
-double energy_error(const ForwardResult& r);
+double energy_error(const Trajectory& r);
 
 }  // namespace mo2d::cli

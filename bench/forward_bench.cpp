@@ -40,7 +40,7 @@ void BM_Forward(benchmark::State& state, Case (*make)(), ForwardOptions o) {
   o.samples = 11;
   long steps = 0, evals = 0;
   for (auto _ : state) {
-    const ForwardResult r = forward_dynamics(c.model, c.start, o);
+    const Trajectory r = forward_dynamics(c.model, c.start, o);
     benchmark::DoNotOptimize(r.q0.data());
     steps += r.stats.steps;
     evals += r.stats.rhs_evaluations;

@@ -52,7 +52,7 @@ void BM_Run(benchmark::State& state, Factory make) {
   const Example ex = make();
   const mo2d::Model model = mo2d::build_model(ex.system);
   for (auto _ : state) {
-    mo2d::InverseResult r = mo2d::inverse_dynamics(model, ex.motion, ex.run);
+    mo2d::Trajectory r = mo2d::inverse_dynamics(model, ex.motion, ex.run);
     benchmark::DoNotOptimize(r.efforts.data());
     benchmark::ClobberMemory();
   }

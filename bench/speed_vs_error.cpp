@@ -28,7 +28,7 @@ int main() {
     o.t1 = 10;
     o.samples = 11;
     try {
-      const ForwardResult r = forward_dynamics(m, st, o);
+      const Trajectory r = forward_dynamics(m, st, o);
       const int k = static_cast<int>(r.time.size()) - 1;
       const VectorXd E = r.kinetic + r.potential;
       std::printf("| %s | %s | (%.9f, %.9f) | %.2e | %ld | %ld | %.1f | %.1e | %.1e |\n",

@@ -33,7 +33,7 @@ ForwardCrosscheck crosscheck_forward(const Model& model_in, const State& initial
   // a reference run takes ~1e3 steps per simulated second; a wrong model (the mutation check's
   // acceleration-bias flip) made CVODE grind through millions: fail instead
   fo.max_steps = 200'000;
-  const ForwardResult ref = forward_dynamics(model, initial, fo);
+  const Trajectory ref = forward_dynamics(model, initial, fo);
 
   Box2DWorld w = build_box2d_world(model, initial.q0, initial.q1, check, false);
   r.time = ref.time;

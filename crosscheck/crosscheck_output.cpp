@@ -4,7 +4,7 @@
 #include <sstream>
 
 #include "mo2d/crosscheck.hpp"
-#include "mo2d/csv.hpp"
+#include "output/write_file.hpp"
 
 namespace mo2d {
 

@@ -10,8 +10,8 @@
 #include <cmath>
 #include <cstring>
 
-#include "mo2d/csv.hpp"
 #include "mo2d/error.hpp"
+#include "output/write_file.hpp"
 #include "png.hpp"
 
 namespace mo2d::detail {

@@ -7,6 +7,7 @@
 #include <string>
 
 #include "mo2d/error.hpp"
+#include "mo2d/forward.hpp"
 #include "mo2d/output.hpp"
 
 namespace mo2d {
@@ -88,7 +89,7 @@ RenderOutputs render_motion(const Model& model, const Motion& motion, const Rend
 
 }  // namespace
 
-Plot efforts_plot(const InverseResult& r) {
+Plot efforts_plot(const Trajectory& r) {
   Plot p = time_plot(r.time);
   bool torque = false, force = false;
   for (size_t u = 0; u < r.input_labels.size(); ++u) {
@@ -102,7 +103,9 @@ Plot efforts_plot(const InverseResult& r) {
 }
 
 // Constraint residuals (columns of `residuals`: position, velocity[, acceleration]) on a log axis.
-static Plot residuals_plot(const Eigen::VectorXd& time, const Eigen::MatrixXd& residuals) {
+Plot residuals_plot(const Trajectory& r) {
+  const Eigen::VectorXd& time = r.time;
+  const Eigen::MatrixXd& residuals = r.residuals;
   Plot p = time_plot(time);
   const char* names[] = {"position (m)", "velocity", "acceleration"};
   for (int c = 0; c < 3 && c < residuals.cols(); ++c)
@@ -114,11 +117,7 @@ static Plot residuals_plot(const Eigen::VectorXd& time, const Eigen::MatrixXd& r
   return p;
 }
 
-Plot inverse_residuals_plot(const InverseResult& r) {
-  return residuals_plot(r.time, r.residuals);
-}
-
-Plot energies_plot(const ForwardResult& r) {
+Plot energies_plot(const Trajectory& r) {
   Plot p = time_plot(r.time);
   // K + V - W + D, not its deviation from the start: the curve is flat at K + V (t0)
   const Eigen::VectorXd balance =
@@ -142,28 +141,14 @@ Plot energies_plot(const ForwardResult& r) {
   return p;
 }
 
-Plot forward_residuals_plot(const ForwardResult& r) {
-  return residuals_plot(r.time, r.residuals);
-}
-
-RenderOutputs render_inverse_run(const Model& model, const InverseResult& result,
-                                 const RenderJob& job) {
+RenderOutputs render_run(const Model& model, const Trajectory& result, const RenderJob& job) {
   std::vector<std::pair<std::string, Plot>> plots;
   if (job.plots) {
-    if (result.efforts.cols() > 0) plots.push_back({"efforts", efforts_plot(result)});
-    plots.push_back({"residuals", inverse_residuals_plot(result)});
-  }
-  const Motion motion = motion_of(result);
-  RenderOutputs out = render_motion(model, motion, job, plots);
-  return out;
-}
-
-RenderOutputs render_forward_run(const Model& model, const ForwardResult& result,
-                                 const RenderJob& job) {
-  std::vector<std::pair<std::string, Plot>> plots;
-  if (job.plots) {
-    plots.push_back({"energies", energies_plot(result)});
-    plots.push_back({"residuals", forward_residuals_plot(result)});
+    if (result.has_energies())
+      plots.push_back({"energies", energies_plot(result)});
+    else if (result.efforts.cols() > 0)
+      plots.push_back({"efforts", efforts_plot(result)});
+    plots.push_back({"residuals", residuals_plot(result)});
   }
   const Motion motion = motion_of(result);
   return render_motion(model, motion, job, plots);

@@ -11,10 +11,7 @@
 
 namespace mo2d {
 
-Motion motion_of(const InverseResult& r) {
-  return {r.time, r.q0, r.efforts};
-}
-Motion motion_of(const ForwardResult& r) {
+Motion motion_of(const Trajectory& r) {
   return {r.time, r.q0, r.efforts};
 }
 

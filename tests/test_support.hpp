@@ -18,7 +18,7 @@ struct NodeState {
 };
 
 // Position, velocity, acceleration of node k of body b at sample i of a result.
-inline NodeState node_state(const Model& m, const InverseResult& r, int i, int b, int k) {
+inline NodeState node_state(const Model& m, const Trajectory& r, int i, int b, int k) {
   const NodeRef& n = m.bodies[b].nodes[k];
   if (n.var < 0) return {n.fixed, {0, 0}, {0, 0}};
   return {{r.q0(i, n.var), r.q0(i, n.var + 1)},
@@ -80,7 +80,7 @@ struct BodyMotion {
 };
 
 // Centre of mass from its defining nodes (Example 2.6 (b)), rotation from nodes 0 and 1.
-inline BodyMotion body_motion(const Model& m, const InverseResult& r, int i, int b,
+inline BodyMotion body_motion(const Model& m, const Trajectory& r, int i, int b,
                               const Params* par = nullptr) {
   const Body& body = m.bodies[b];
   Params own{body.mass, body.inertia, body.ci, body.cj, body.gamma, body.rho};
@@ -114,7 +114,7 @@ inline int body_index(const Model& m, const std::string& name) {
 
 // dE/dt = sum m vc.ac + I w wdot - m g.vc  (kinetic + potential energy rate), with the
 // parameters of the definitions and the gravity g.
-inline double energy_rate(const Model& m, const InverseResult& r, int i,
+inline double energy_rate(const Model& m, const Trajectory& r, int i,
                           const std::vector<Params>& par, const Eigen::Vector2d& g) {
   double p = 0;
   for (size_t b = 0; b < m.bodies.size(); ++b) {
@@ -125,7 +125,7 @@ inline double energy_rate(const Model& m, const InverseResult& r, int i,
   return p;
 }
 
-inline double energy(const Model& m, const InverseResult& r, int i) {
+inline double energy(const Model& m, const Trajectory& r, int i) {
   double e = 0;
   for (size_t b = 0; b < m.bodies.size(); ++b) {
     const BodyMotion bm = body_motion(m, r, i, static_cast<int>(b));

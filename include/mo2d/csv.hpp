@@ -2,27 +2,19 @@
 // CSV output with a header of labels, written atomically (temporary file, then rename).
 #include <string>
 
-#include "mo2d/forward.hpp"
-#include "mo2d/inverse.hpp"
+#include "mo2d/trajectory.hpp"
 
 namespace mo2d {
 
-// Write `content` to `path` atomically: a hidden temporary DIR/.NAME.tmp.<pid>.<n> is written,
-// flushed and renamed (removed if SIGINT/SIGTERM ends the process, remove_temporaries_on_signal).
-// While an OutputSet::Scope is alive, the file is added to that set instead (mo2d/output.hpp).
-// The CSV writers refuse a non-finite value (Error naming the column and the time).
-void write_file_atomically(const std::string& path, const std::string& content);
+// The CSV files are written atomically (a temporary, then renamed; mo2d/output.hpp). The writers
+// refuse a non-finite value (Error naming the column and the time).
 
 // Columns: t, coordinates, quasi-velocities, their derivatives (label + ".dot"), efforts,
-// reactions, residual.position, residual.velocity, residual.acceleration.
-std::string inverse_csv(const InverseResult& r);
-void write_inverse_csv(const InverseResult& r, const std::string& path);
-
-// Columns: t, coordinates, quasi-velocities, their derivatives (label + ".dot"), efforts,
-// reactions, energy.kinetic, energy.potential, work.inputs, energy.dissipated, work.loads (forces
-// and torques), work.constraints (time-dependent constraints), residual.position,
-// residual.velocity.
-std::string forward_csv(const ForwardResult& r);
-void write_forward_csv(const ForwardResult& r, const std::string& path);
+// reactions; for a forward run energy.kinetic, energy.potential, work.inputs, energy.dissipated,
+// work.loads (forces and torques), work.constraints (time-dependent constraints); then the
+// residuals (Trajectory::residual_labels): residual.position, residual.velocity and, for an
+// inverse run, residual.acceleration.
+std::string trajectory_csv(const Trajectory& r);
+void write_trajectory_csv(const Trajectory& r, const std::string& path);
 
 }  // namespace mo2d

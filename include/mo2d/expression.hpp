@@ -19,7 +19,6 @@
 
 #include "mo2d/error.hpp"
 #include "mo2d/jet.hpp"
-#include "mo2d/suggest.hpp"  // edit_distance, did_you_mean
 
 namespace mo2d {
 

@@ -12,6 +12,8 @@
 //    independent quasi-velocities chosen by pivoting (re-chosen when K gets ill-conditioned).
 // After each step the state is projected back on psi(q0) = 0 and A q1 = b (minimum-norm
 // Gauss-Newton, regularized), so constraint drift stays at the solver tolerance.
+// The workspace of these evaluations, and forward_accelerations (one evaluation at a given state):
+// mo2d/forward_data.hpp.
 #include <Eigen/Core>
 #include <functional>
 #include <string>
@@ -22,6 +24,7 @@
 #include "mo2d/dynamics.hpp"
 #include "mo2d/inverse.hpp"
 #include "mo2d/model.hpp"
+#include "mo2d/trajectory.hpp"
 
 namespace mo2d {
 
@@ -105,41 +108,13 @@ struct ForwardOptions {
 // tolerances or budgets. forward_dynamics calls it first.
 void check_forward_options(const Model& m, const ForwardOptions& options);
 
-struct ForwardStats {
-  long steps = 0, rhs_evaluations = 0, factorizations = 0, projections = 0, error_test_failures = 0;
-  long solver_iterations = 0;        // augmented Lagrangian iterations, summed over evaluations
-  long regularized_evaluations = 0;  // evaluations near a singular configuration (regularized)
-  long stepped_over = 0;             // steps redone to avoid evaluating inside a singular instant
-  double cpu_seconds = 0;
-  bool stopped_by_event = false;
-  double t_end = 0;
-  double min_pivot_ratio = 1;  // smallest (sigma_min / sigma_max)^2 of A seen at output times
-  double max_drift = 0;        // largest position drift at output times (see drift_tolerance)
-  std::vector<std::string> warnings;
-};
-
-struct ForwardResult {
-  std::vector<std::string> coordinate_labels, rate_labels, input_labels, reaction_labels;
-  VectorXd time;
-  MatrixXd q0, q1, a1;          // samples x n0 / n1 / n1
-  VectorXd kinetic, potential;  // energies (J); potential of gravity (datum y = 0) and springs
-  VectorXd input_work;          // integral of the input power B u . q1 from t0 (J)
-  VectorXd load_work;           // integral of the power of the applied forces and torques (J)
-  VectorXd constraint_work;     // integral of the power of time-dependent constraints (J)
-  VectorXd dissipated;          // integral of the damper power from t0 (J, >= 0)
-  MatrixXd residuals;           // samples x 2: |psi|_inf, |A q1 - b|_inf
-  MatrixXd efforts;             // samples x inputs: the efforts applied
-  MatrixXd reactions;           // samples x reactions (Model::reactions), from least-squares
-                                // multipliers (not unique where the Jacobian loses rank)
-  ForwardStats stats;
-  int column(const std::string& coordinate_label) const;
-  int rate_column(const std::string& rate_label) const;
-  int reaction(const std::string& reaction_label) const;
-};
-
-// Every recorded value is finite: the first non-finite one throws an Error naming the time and the
-// variable (the integration diverged or a value overflowed).
-ForwardResult forward_dynamics(const Model& m, const State& initial, const ForwardOptions& options);
+// The run, recorded at every output time as a Trajectory (kind forward): the state, its rates,
+// the efforts applied, the reactions (from least-squares multipliers, not unique where the
+// constraint Jacobian loses rank), the residuals |psi|_inf and |A q1 - b|_inf, the energies, and
+// the integrator's statistics (RunStats). Every recorded value is finite: the first non-finite one
+// throws an Error naming the time and the variable (the integration diverged or a value
+// overflowed).
+Trajectory forward_dynamics(const Model& m, const State& initial, const ForwardOptions& options);
 
 // Efforts replayed from inverse dynamics, one function per input: `exact` solves the inverse
 // problem at the requested instant (no interpolation error); `from_samples` interpolates a sampled
@@ -148,13 +123,14 @@ ForwardResult forward_dynamics(const Model& m, const State& initial, const Forwa
 std::vector<std::function<double(double)>> efforts_from_inverse(const Model& m,
                                                                 std::vector<Prescribed> prescribed,
                                                                 const InverseOptions& options = {});
-std::vector<std::function<double(double)>> efforts_from_samples(const InverseResult& r);
+std::vector<std::function<double(double)>> efforts_from_samples(const Trajectory& r);
 
 // Energy balance of a run at every sample: K + V - (K + V)(t0) - W_inputs - W_loads
 // - W_constraints + D (J). Every term is integrated along the run or evaluated from the state, so
 // on a correct run it stays at the integration error; energy_balance_error is its max |.|.
-VectorXd energy_balance(const ForwardResult& r);
-double energy_balance_error(const ForwardResult& r);
+// Throws Error for a trajectory without energies (an inverse run).
+VectorXd energy_balance(const Trajectory& r);
+double energy_balance_error(const Trajectory& r);
 
 // Kinetic energy 1/2 q1^T M q1 (potential_energy and damping_power: mo2d/dynamics.hpp).
 double kinetic_energy(const Model& m, const VectorXd& q1);

@@ -14,12 +14,16 @@
 #include <vector>
 
 #include "mo2d/budget.hpp"
-#include "mo2d/detail/reactions.hpp"
-#include "mo2d/detail/small_lu.hpp"
 #include "mo2d/jet.hpp"
 #include "mo2d/model.hpp"
+#include "mo2d/trajectory.hpp"
 
 namespace mo2d {
+
+namespace detail {
+class SmallLU;     // dense LU of the small systems of one sample (src/linalg/small_lu.hpp)
+struct SlotEntry;  // an entry of A owned by a body slot, for the reactions (src/dynamics/)
+}  // namespace detail
 
 using Eigen::MatrixXd;
 using Eigen::VectorXd;
@@ -68,6 +72,9 @@ void check_inverse_options(const Model& m, const InverseOptions& options);
 // needs is allocated here once.
 struct InverseData {
   InverseData(const Model& m, std::span<const Prescribed> prescribed, const InverseOptions& o = {});
+  ~InverseData();
+  InverseData(const InverseData&) = delete;
+  InverseData& operator=(const InverseData&) = delete;
 
   InverseOptions options;
   std::vector<int> p_index;  // prescribed coordinate indices
@@ -85,7 +92,7 @@ struct InverseData {
   double pivot_ratio = 0;  // min/max |pivot| of the LU of the dimensionless K (a cheap
                            // conditioning indicator)
   // Singular passages and branch jumps found so far (time, prescribed values, variables), in the
-  // order found; inverse_dynamics() copies them to InverseResult::warnings.
+  // order found; inverse_dynamics() copies them to Trajectory::stats.warnings.
   std::vector<std::string> warnings;
 
   // workspace
@@ -101,7 +108,7 @@ struct InverseData {
   double near_min = 1, near_t = 0;
   std::string near_what;  // prescribed values and variables at the smallest pivot ratio
   MatrixXd S;  // orthogonal complement C (n1 x dof) used for the efforts of the last sample
-  detail::SmallLU lu_pos, lu_K;  // positions (free coordinates), K = [A; E]
+  std::unique_ptr<detail::SmallLU> lu_pos, lu_K;  // positions (free coordinates), K = [A; E]
   Eigen::PartialPivLU<MatrixXd> lu_u;
   std::vector<double> edge_force;  // per merge edge: 2 (node) or 1 (rotation) values
   std::vector<int> edge_offset;
@@ -120,25 +127,22 @@ void inverse_dynamics_sample(const Model& m, InverseData& d, double t);
 // calls it; needed only when calling inverse_dynamics_sample directly).
 void finish_inverse_warnings(InverseData& d);
 
-struct InverseResult {
-  std::vector<std::string> coordinate_labels, rate_labels, input_labels, reaction_labels;
-  VectorXd time;
-  MatrixXd q0, q1, a1;  // samples x n0 / n1 / n1
-  MatrixXd efforts;     // samples x inputs
-  MatrixXd reactions;   // samples x reactions
-  MatrixXd residuals;   // samples x 3: position, velocity, acceleration (inf norms)
-  double cpu_seconds = 0;
-  // singular configurations passed or approached, and jumps between assembly modes, with the
-  // time and the variables (see InverseOptions)
-  std::vector<std::string> warnings;
-  int column(const std::string& label) const;  // index in coordinate labels
-  int input(const std::string& label) const;
-  int reaction(const std::string& label) const;
-};
+// Whole run: options.samples equally spaced samples in [t0, t1]. The Trajectory (kind inverse)
+// holds every sample's solution and residuals (position, velocity, acceleration); stats: the CPU
+// time and the singular configurations passed or approached, and the jumps between assembly modes,
+// with the time and the variables (see InverseOptions).
+Trajectory inverse_dynamics(const Model& m, std::span<const Prescribed> prescribed,
+                            const InverseOptions& options);
 
-// Whole run: options.samples equally spaced samples in [t0, t1].
-InverseResult inverse_dynamics(const Model& m, std::span<const Prescribed> prescribed,
-                               const InverseOptions& options);
+// A second formulation, for validation: Lagrange multipliers on the unreduced model
+// (Reduction::none: every joint is a constraint row). At each sample the kinematics are solved
+// as in inverse_dynamics, then accelerations, multipliers and efforts together from
+//   [ M  A^T  -B ] [a1    ]   [ f      ]
+//   [ A  0     0 ] [lambda] = [ c      ]
+//   [ E  0     0 ] [u     ]   [ s_ddot ]
+// so M a1 = f + B u - A^T lambda. Reactions are read from lambda directly.
+Trajectory inverse_dynamics_lagrange(const Model& m, std::span<const Prescribed> prescribed,
+                                     const InverseOptions& options);
 
 // Orthogonal complement S of A (n1 x dof, A S = 0) built recursively over the subsystem tree:
 // S = R C, R = blockdiag(I, S_children), C = null(A_external R) (Theorem 2.10).

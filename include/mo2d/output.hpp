@@ -10,8 +10,8 @@
 //    remove every registered temporary and end the process by the same signal;
 //  - two runs into one folder at once each land their whole set: the folder holds the files of one
 //    run or of the other, never one run's CSV with the other's JSON.
-// While an OutputSet::Scope is alive, write_file_atomically() (CSV, images, plots) adds to that set
-// instead of renaming at once.
+// While an OutputSet::Scope is alive, every file mo2d writes (write_csv, the images and plots of
+// mo2d::render, the cross-check's CSV) is added to that set instead of being renamed in at once.
 #include <string>
 #include <vector>
 
@@ -33,7 +33,7 @@ class OutputSet {
   // The paths added so far, in order.
   std::vector<std::string> paths() const;
 
-  // Routes write_file_atomically() to `set` while alive (one per thread; nested scopes stack).
+  // Routes the files mo2d writes to `set` while alive (one per thread; nested scopes stack).
   class Scope {
    public:
     explicit Scope(OutputSet& set);
@@ -59,19 +59,8 @@ class OutputSet {
 };
 
 // Install handlers of SIGINT, SIGTERM and SIGHUP (only where the disposition is the default) that
-// remove the registered temporaries (of OutputSet and write_file_atomically) and then end the
+// remove the registered temporaries (of OutputSet and of every file being written) and then end the
 // process by that signal (its exit status says so). Idempotent.
 void remove_temporaries_on_signal();
-
-namespace detail {
-// Registry of temporary files to remove on a signal: a fixed table (the handler only unlinks).
-// register_temporary returns a slot (-1 if the table is full: the file is then not cleaned).
-int register_temporary(const std::string& path);
-void unregister_temporary(int slot);
-// DIR/.NAME.tmp.PID.N for path DIR/NAME.
-std::string temporary_path(const std::string& path);
-// Writes content to `tmp` (flushed and synced); throws Error naming `path`.
-void write_temporary(const std::string& tmp, const std::string& path, const std::string& content);
-}  // namespace detail
 
 }  // namespace mo2d

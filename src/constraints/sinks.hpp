@@ -3,7 +3,7 @@
 //   position level: add(row, q0 index, value);  velocity level: add(row, VarRef, value).
 #include <vector>
 
-#include "mo2d/detail/reactions.hpp"
+#include "dynamics/reactions.hpp"
 #include "mo2d/model.hpp"
 
 namespace mo2d::detail {

@@ -1,18 +1,17 @@
 // Inverse dynamics with Lagrange multipliers on the unreduced model (validation formulation).
-#include "mo2d/lagrange.hpp"
-
 #include <Eigen/LU>
 
 #include "mo2d/dynamics.hpp"
 #include "mo2d/error.hpp"
+#include "mo2d/inverse.hpp"
 #include "mo2d/kinematics.hpp"
 #include "output/result_rows.hpp"
 #include "run/cpu_time.hpp"
 
 namespace mo2d {
 
-InverseResult inverse_dynamics_lagrange(const Model& m, std::span<const Prescribed> prescribed,
-                                        const InverseOptions& options) {
+Trajectory inverse_dynamics_lagrange(const Model& m, std::span<const Prescribed> prescribed,
+                                     const InverseOptions& options) {
   if (m.reduction != Reduction::none)
     throw Error("inverse_dynamics_lagrange needs a model built with Reduction::none", m.name);
   // kinematics (positions, velocities) from the same per-sample solver; dynamics solved here
@@ -24,11 +23,13 @@ InverseResult inverse_dynamics_lagrange(const Model& m, std::span<const Prescrib
   MatrixXd L = MatrixXd::Zero(N, n1 + m1 + nu);
   VectorXd rhs(N), f(n1), c(m1), bb(m1);
   MatrixXd A(m1, n1);
-  InverseResult r;
+  Trajectory r;
+  r.kind = RunKind::inverse;
   r.coordinate_labels = m.coordinate_labels;
   r.rate_labels = m.rate_labels;
   r.input_labels = m.input_labels();
   r.reaction_labels = m.reaction_labels();
+  r.residual_labels = {"residual.position", "residual.velocity", "residual.acceleration"};
   const int S = options.samples;
   r.time.resize(S);
   r.q0.resize(S, m.n0);
@@ -64,7 +65,7 @@ InverseResult inverse_dynamics_lagrange(const Model& m, std::span<const Prescrib
     r.residuals.row(k) << d.residual_position, (A * d.q1 - bb).lpNorm<Eigen::Infinity>(),
         (A * x.head(n1) - c).lpNorm<Eigen::Infinity>();
   }
-  r.cpu_seconds = detail::cpu_seconds() - start;
+  r.stats.cpu_seconds = detail::cpu_seconds() - start;
   return r;
 }
 

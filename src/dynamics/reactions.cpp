@@ -1,5 +1,5 @@
 // Joint reactions from multipliers, with the split at eliminated joints (see the header).
-#include "mo2d/detail/reactions.hpp"
+#include "dynamics/reactions.hpp"
 
 namespace mo2d::detail {
 

@@ -10,13 +10,12 @@
 #include <memory>
 #include <sstream>
 
-#include "run/cpu_time.hpp"
-#include "forward/forward_data.hpp"
-#include "mo2d/detail/small_lu.hpp"
+#include "forward/forward_run.hpp"
+#include "linalg/small_lu.hpp"
 #include "mo2d/dynamics.hpp"
 #include "mo2d/error.hpp"
 #include "mo2d/kinematics.hpp"
-#include "mo2d/suggest.hpp"
+#include "run/cpu_time.hpp"
 
 namespace mo2d {
 
@@ -48,10 +47,9 @@ const char* to_string(Formulation f) {
 }
 
 using detail::fmt;
-using detail::ForwardData;
 using detail::Recorder;
 
-void detail::check_finite_sample(const Model& m, const ForwardResult& r, int k) {
+void detail::check_finite_sample(const Model& m, const Trajectory& r, int k) {
   // (a row of a matrix with no columns, e.g. the efforts of a mechanism without inputs, would be
   // an offset from Eigen's null data pointer: such a row is finite)
   auto row_finite = [k](const MatrixXd& x) { return x.cols() == 0 || x.row(k).allFinite(); };
@@ -98,7 +96,10 @@ double kinetic_energy(const Model& m, const VectorXd& q1) {
   return 0.5 * q1.dot(Mq);
 }
 
-VectorXd energy_balance(const ForwardResult& r) {
+VectorXd energy_balance(const Trajectory& r) {
+  if (!r.has_energies())
+    throw Error("energy balance: the trajectory has no energies (an inverse-dynamics run)",
+                "energies");
   const Eigen::Index n = r.time.size();
   if (n == 0) return VectorXd();
   auto or_zero = [n](const VectorXd& v) { return v.size() == n ? v : VectorXd(VectorXd::Zero(n)); };
@@ -107,7 +108,7 @@ VectorXd energy_balance(const ForwardResult& r) {
          or_zero(r.constraint_work).array() + or_zero(r.dissipated).array();
 }
 
-double energy_balance_error(const ForwardResult& r) {
+double energy_balance_error(const Trajectory& r) {
   const VectorXd b = energy_balance(r);
   return b.size() ? b.cwiseAbs().maxCoeff() : 0.0;
 }
@@ -207,8 +208,8 @@ bool fixed_step(Integrator i) {
   return i == Integrator::rk4 || i == Integrator::baumgarte;
 }
 
-// Dense matrices of the forward workspace (forward_data.hpp) and of CVODE's BDF (Jacobian and its
-// saved copy), and the recorded results: bytes, estimated from the sizes.
+// Dense matrices of the forward workspace (mo2d/forward_data.hpp) and of CVODE's BDF (Jacobian and
+// its saved copy), and the recorded results: bytes, estimated from the sizes.
 double forward_memory_bytes(const Model& m, const ForwardOptions& o) {
   const double n0 = m.n0, n1 = m.n1, m0 = m.m0, m1 = m.m1;
   double dense =
@@ -272,7 +273,7 @@ void check_forward_options(const Model& m, const ForwardOptions& o) {
                forward_memory_bytes(m, o), o.max_memory, model_sizes(m), "max_memory");
 }
 
-ForwardResult forward_dynamics(const Model& m, const State& initial, const ForwardOptions& o) {
+Trajectory forward_dynamics(const Model& m, const State& initial, const ForwardOptions& o) {
   check_forward_options(m, o);
   if (m.n1 == 0)  // nothing to integrate (a scene without bodies, or every body fixed)
     throw Error("forward dynamics of '" + m.name +
@@ -281,11 +282,13 @@ ForwardResult forward_dynamics(const Model& m, const State& initial, const Forwa
   if (initial.q0.size() != m.n0 || initial.q1.size() != m.n1)
     throw Error("forward dynamics: the initial state does not match the model's variables", m.name);
   ForwardData d(m, o);
-  ForwardResult r;
+  Trajectory r;
+  r.kind = RunKind::forward;
   r.coordinate_labels = m.coordinate_labels;
   r.rate_labels = m.rate_labels;
   r.input_labels = m.input_labels();
   r.reaction_labels = m.reaction_labels();
+  r.residual_labels = {"residual.position", "residual.velocity"};
   const int N = o.samples;
   r.efforts = MatrixXd::Zero(N, m.n_inputs());
   r.reactions = MatrixXd::Zero(N, m.n_reactions());
@@ -357,7 +360,7 @@ std::vector<std::function<double(double)>> efforts_from_inverse(const Model& m,
   return out;
 }
 
-std::vector<std::function<double(double)>> efforts_from_samples(const InverseResult& r) {
+std::vector<std::function<double(double)>> efforts_from_samples(const Trajectory& r) {
   std::vector<std::function<double(double)>> out;
   const int n = static_cast<int>(r.time.size());
   if (n < 2) throw Error("efforts_from_samples: need at least two samples", "samples");
@@ -380,16 +383,6 @@ std::vector<std::function<double(double)>> efforts_from_samples(const InverseRes
     });
   }
   return out;
-}
-
-int ForwardResult::column(const std::string& l) const {
-  return label_index(coordinate_labels, l, "coordinate");
-}
-int ForwardResult::reaction(const std::string& l) const {
-  return label_index(reaction_labels, l, "reaction");
-}
-int ForwardResult::rate_column(const std::string& l) const {
-  return label_index(rate_labels, l, "quasi-velocity");
 }
 
 }  // namespace mo2d

@@ -14,7 +14,7 @@
 #include <sstream>
 #include <vector>
 
-#include "forward/forward_data.hpp"
+#include "forward/forward_run.hpp"
 #include "mo2d/dynamics.hpp"
 #include "mo2d/error.hpp"
 #include "mo2d/kinematics.hpp"
@@ -127,7 +127,7 @@ int cv_root(realtype t, N_Vector y, realtype* g, void* user) {
 
 // CVODE's messages go to the run's warnings, not to stderr.
 void cv_error_handler(int code, const char* module, const char* function, char* msg, void* data) {
-  auto* stats = static_cast<ForwardStats*>(data);
+  auto* stats = static_cast<RunStats*>(data);
   if (stats->warnings.size() < 20)
     stats->warnings.push_back(std::string(code < 0 ? "error" : "warning") + " in " + module + " " +
                               function + ": " + msg);

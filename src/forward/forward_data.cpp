@@ -1,19 +1,25 @@
 // Forward dynamics, one evaluation: accelerations in three formulations, projection on the
-// constraint manifolds, reactions of a recorded state, and the output recorder.
-#include "forward/forward_data.hpp"
+// constraint manifolds, reactions of a recorded state (the stages of ForwardData,
+// mo2d/forward_data.hpp) and forward_accelerations. The recorder: recorder.cpp.
+#include "mo2d/forward_data.hpp"
 
 #include <Eigen/QR>
 #include <algorithm>
 #include <cmath>
+#include <memory>
 #include <sstream>
 
 #include "constraints/constraints.hpp"
+#include "dynamics/reactions.hpp"
+#include "forward/forward_run.hpp"
+#include "linalg/small_lu.hpp"
 #include "mo2d/dynamics.hpp"
 #include "mo2d/error.hpp"
 #include "mo2d/kinematics.hpp"
-#include "output/result_rows.hpp"
 
-namespace mo2d::detail {
+namespace mo2d {
+
+namespace detail {
 
 std::string fmt(double v) {
   std::ostringstream s;
@@ -27,6 +33,11 @@ VectorXd regularized_normal_solve(const MatrixXd& J, const VectorXd& x, double e
   G.diagonal().array() += eps * std::max(1.0, G.diagonal().maxCoeff());
   return G.llt().solve(J * x);
 }
+
+}  // namespace detail
+
+using detail::fmt;
+using detail::regularized_normal_solve;
 
 ForwardData::ForwardData(const Model& model, const ForwardOptions& opt) : m(model), o(opt) {
   M = mass_matrix(m);
@@ -42,7 +53,7 @@ ForwardData::ForwardData(const Model& model, const ForwardOptions& opt) : m(mode
   local = VectorXd::Zero(m.n_slots);
   An = MatrixXd::Zero(m.m1, m.n1);
   G1 = MatrixXd::Zero(m.m1, m.m1);
-  lu_G1 = detail::SmallLU(m.m1);
+  lu_G1_ = std::make_unique<detail::SmallLU>(m.m1);
   row_scale = VectorXd::Ones(m.m1);
   pos_row_scale = VectorXd::Ones(m.m0);
   col_scale = column_scaling(m);
@@ -63,9 +74,9 @@ ForwardData::ForwardData(const Model& model, const ForwardOptions& opt) : m(mode
   KKT = MatrixXd::Zero(m.n1 + m.m1, m.n1 + m.m1);
   KKT.topLeftCorner(m.n1, m.n1) = M;
   kkt_x = VectorXd::Zero(m.n1 + m.m1);
-  lu_kkt = detail::SmallLU(m.n1 + m.m1);
+  lu_kkt_ = std::make_unique<detail::SmallLU>(m.n1 + m.m1);
   K = MatrixXd::Zero(m.n1, m.n1);
-  lu_K = detail::SmallLU(m.n1);
+  lu_K_ = std::make_unique<detail::SmallLU>(m.n1);
   S = MatrixXd::Zero(m.n1, m.dof);
   CtMC = MatrixXd::Zero(m.dof, m.dof);
   red = VectorXd::Zero(m.dof);
@@ -89,10 +100,22 @@ ForwardData::ForwardData(const Model& model, const ForwardOptions& opt) : m(mode
   lam_ls = VectorXd::Zero(m.m1);
 }
 
+ForwardData::~ForwardData() = default;
+
 void ForwardData::inputs(double t) {
   for (int k = 0; k < m.n_inputs(); ++k) {
     const bool has = k < static_cast<int>(o.efforts.size()) && o.efforts[k];
     u[k] = has ? o.efforts[k](t) : 0.0;
+    if (!std::isfinite(u[k]))
+      throw Error("effort of input '" + m.inputs[k].label + "' is not finite at t = " + fmt(t),
+                  m.inputs[k].label, t);
+  }
+  Bu.noalias() = B * u;
+}
+
+void ForwardData::set_inputs(const VectorXd& efforts, double t) {
+  for (int k = 0; k < m.n_inputs(); ++k) {
+    u[k] = efforts[k];
     if (!std::isfinite(u[k]))
       throw Error("effort of input '" + m.inputs[k].label + "' is not finite at t = " + fmt(t),
                   m.inputs[k].label, t);
@@ -106,10 +129,10 @@ double ForwardData::solve_kkt() {
   KKT.topRightCorner(m.n1, m.m1) = A.transpose();
   KKT.bottomLeftCorner(m.m1, m.n1) = A;
   ++stats.factorizations;
-  const double r = lu_kkt.compute(KKT);
+  const double r = lu_kkt_->compute(KKT);
   kkt_x.head(m.n1) = rhs;
   kkt_x.tail(m.m1) = c;
-  lu_kkt.solve_in_place(kkt_x);
+  lu_kkt_->solve_in_place(kkt_x);
   return r;
 }
 
@@ -159,7 +182,7 @@ double ForwardData::row_conditioning() {
   row_scale_of(A, col_scale, row_scale);
   An.noalias() = row_scale.asDiagonal() * A * col_scale.asDiagonal();
   G1.noalias() = An * An.transpose();
-  return lu_G1.compute(G1);
+  return lu_G1_->compute(G1);
 }
 
 // M + alpha A^T N^2 A (the augmented-Lagrangian matrix; N = row_scale, set by the caller).
@@ -177,7 +200,23 @@ void ForwardData::choose_independent(const VectorXd& q0, double t) {
   independent.assign(p.data() + (m.n1 - m.dof), p.data() + m.n1);
 }
 
+// The evaluation stage: A, b, c (with Baumgarte's feedback if asked), the applied forces f, the
+// efforts (from the options' functions at t, or given), then a and lambda by the formulation.
 void ForwardData::accelerations(double t, const VectorXd& q0, const VectorXd& q1, bool baumgarte) {
+  load(t, q0, q1, baumgarte);
+  inputs(t);
+  evaluate(t, q0, q1);
+}
+
+void ForwardData::accelerations(double t, const VectorXd& q0, const VectorXd& q1, bool baumgarte,
+                                const VectorXd& efforts) {
+  load(t, q0, q1, baumgarte);
+  set_inputs(efforts, t);
+  evaluate(t, q0, q1);
+}
+
+// Velocity rows, acceleration right-hand side and applied forces at (t, q0, q1).
+void ForwardData::load(double t, const VectorXd& q0, const VectorXd& q1, bool baumgarte) {
   ++stats.rhs_evaluations;
   accel_ok = true;
   velocity_jacobian(m, q0, t, A, b);
@@ -186,137 +225,21 @@ void ForwardData::accelerations(double t, const VectorXd& q0, const VectorXd& q1
   body_applied(m, q0, q1, t, local);
   f.setZero();
   scatter_local(m, local, f);
-  inputs(t);
+}
+
+// a and lambda from rhs = f + B u by the options' formulation; checks that they are finite.
+void ForwardData::evaluate(double t, const VectorXd& q0, const VectorXd& q1) {
   rhs = f + Bu;
   switch (o.formulation) {
-    case Formulation::augmented_lagrangian: {
-      // Away from singular configurations: a direct solve (exact up to rounding); by the Schur
-      // complement with the constant M^-1 when M is positive definite, else of the KKT matrix.
-      // Near a singular configuration, a state slightly off the constraint manifold (a stage of
-      // a Runge-Kutta step) makes c inconsistent in the direction A is losing, and the direct
-      // solution blows up as 1/sigma_min: there the augmented Lagrangian takes over.
-      if (has_Minv) {
-        if (note_conditioning(t, q0, solve_schur()) >= kDirectAccept) break;
-      } else if (note_conditioning(t, q0, row_conditioning()) >= kDirectAccept && solve_kkt() > 0 &&
-                 kkt_x.allFinite()) {
-        a = kkt_x.head(m.n1);
-        lambda = kkt_x.tail(m.m1);
-        break;
-      }
-      // Near a singular configuration: the augmented Lagrangian (M + alpha A^T A) stays positive
-      // definite and regularizes the degenerate direction.
-      row_scale_of(A, col_scale, row_scale);
-      llt_H.compute(H_of(alpha));
-      ++stats.factorizations;
-      if (llt_H.info() != Eigen::Success)
-        throw Error("forward dynamics of '" + m.name +
-                        "': the mass matrix is not positive on "
-                        "the mechanism's motions at t = " +
-                        fmt(t) + " (a body without mass or inertia?)",
-                    m.name, t);
-      // Iterate in residual form, warm-started from the last accepted multipliers (reset if not
-      // finite): r1 = f + B u - M a - A^T lambda, r2 = c - A a; H da = r1 + alpha A^T N^2 r2,
-      // a += da, lambda -= alpha N^2 (c - A a). Written on the true residuals, the iteration also
-      // refines away the rounding of the (ill-conditioned) H solves. It stops when converged or
-      // when the residual no longer halves: there the penalty regularizes the constraint instead
-      // of enforcing it with unbounded multipliers, and the result is flagged as inaccurate
-      // (accel_ok = false) so that an explicit integrator can step over this instant.
-      if (!lambda.allFinite()) lambda.setZero();
-      a.setZero();
-      double prev = INFINITY;
-      int it = 0;
-      // Both residuals are measured in dimensionless terms: the generalized forces as D r1 against
-      // D (f + B u) and D A^T lambda, the constraint rows as N r2 against N c plus a tenth of the
-      // accelerations D^-1 a (so that a state at rest, c = 0, is judged on the size of a).
-      auto inf_scaled = [](const VectorXd& v, const VectorXd& sc, bool divide) {
-        double x = 0;
-        for (Eigen::Index k = 0; k < v.size(); ++k)
-          x = std::max(x, std::abs(divide ? v[k] / sc[k] : v[k] * sc[k]));
-        return x;
-      };
-      for (; it < 40; ++it) {
-        tmp0 = rhs;
-        tmp0.noalias() -= M * a;
-        tmp1.noalias() = A.transpose() * lambda;
-        tmp0 -= tmp1;  // r1
-        ap.head(m.m1) = c;
-        ap.head(m.m1).noalias() -= A * a;  // r2
-        const double s1 = inf_scaled(rhs, col_scale, false) + inf_scaled(tmp1, col_scale, false);
-        const double s2 = inf_scaled(c, row_scale, false) + 0.1 * inf_scaled(a, col_scale, true);
-        const double e = std::max(inf_scaled(tmp0, col_scale, false) / (s1 + 1e-300),
-                                  inf_scaled(ap.head(m.m1), row_scale, false) / (s2 + 1e-300));
-        if (it > 0 && (e <= 1e-14 || e > 0.5 * prev)) break;
-        prev = e;
-        ap.head(m.m1).array() *= row_scale.array().square();
-        tmp0.noalias() += alpha * A.transpose() * ap.head(m.m1);
-        llt_H.solveInPlace(tmp0);
-        a += tmp0;
-        ap.head(m.m1) = c;
-        ap.head(m.m1).noalias() -= A * a;
-        ap.head(m.m1).array() *= row_scale.array().square();
-        lambda.noalias() -= alpha * ap.head(m.m1);
-      }
-      stats.solver_iterations += it;
-      accel_residual = prev;
-      accel_ok = prev <= kAlfAccept;
-      ++stats.regularized_evaluations;
-      if (!lambda.allFinite()) lambda.setZero();
+    case Formulation::augmented_lagrangian:
+      solve_augmented_lagrangian(t, q0);
       break;
-    }
-    case Formulation::lagrange: {
-      if (!projects()) note_conditioning(t, q0, row_conditioning());
-      const double r = solve_kkt();
-      if (r < 1e-14)
-        throw Error("forward dynamics of '" + m.name + "': [M A^T; A 0] is singular at t = " +
-                        fmt(t) + " s (singular configuration; use the augmented Lagrangian)",
-                    m.name, t);
-      a = kkt_x.head(m.n1);
-      lambda = kkt_x.tail(m.m1);
-      accel_ok = r >= kKktAccept;
+    case Formulation::lagrange:
+      solve_lagrange(t, q0);
       break;
-    }
-    case Formulation::null_space: {
-      if (!projects()) note_conditioning(t, q0, row_conditioning());
-      if (independent.empty()) choose_independent(q0, t);
-      auto build = [&] {
-        K.setZero();
-        K.topRows(m.m1) = A;
-        for (int k = 0; k < m.dof; ++k) K(m.m1 + k, independent[k]) = 1.0;
-        ++stats.factorizations;
-        return lu_K.compute(K);
-      };
-      if (build() < 1e-8) {  // partition switch: re-choose the independent variables
-        choose_independent(q0, t);
-        velocity_jacobian(m, q0, t, A, b);
-        if (build() < 1e-14)
-          throw Error("forward dynamics of '" + m.name + "': no independent coordinates at t = " +
-                          fmt(t) + " s (singular configuration; use the augmented Lagrangian)",
-                      m.name, t);
-      }
-      // a = a_p + C x with a_p = K^-1 [c; 0], C = K^-1 [0; I]; C^T M C x = C^T (f + B u - M a_p)
-      ap.setZero();
-      ap.head(m.m1) = c;
-      lu_K.solve_in_place(ap);
-      for (int k = 0; k < m.dof; ++k) {
-        auto col = S.col(k);
-        col.setZero();
-        col[m.m1 + k] = 1.0;
-        lu_K.solve_in_place(col);
-      }
-      CtMC.noalias() = S.transpose() * M * S;
-      red.noalias() = S.transpose() * (rhs - M * ap);
-      llt_red.compute(CtMC);
-      if (llt_red.info() != Eigen::Success)
-        throw Error("forward dynamics of '" + m.name +
-                        "': the reduced mass matrix C^T M C is "
-                        "not positive definite at t = " +
-                        fmt(t) + " (a body without mass?)",
-                    m.name, t);
-      llt_red.solveInPlace(red);
-      a = ap;
-      a.noalias() += S * red;
+    case Formulation::null_space:
+      solve_null_space(t, q0);
       break;
-    }
   }
   if (!q0.allFinite() || !q1.allFinite())
     throw Error("forward dynamics of '" + m.name +
@@ -327,6 +250,134 @@ void ForwardData::accelerations(double t, const VectorXd& q0, const VectorXd& q1
   if (!a.allFinite())
     throw Error("forward dynamics of '" + m.name + "': non-finite accelerations at t = " + fmt(t),
                 m.name, t);
+}
+
+void ForwardData::solve_augmented_lagrangian(double t, const VectorXd& q0) {
+  // Away from singular configurations: a direct solve (exact up to rounding); by the Schur
+  // complement with the constant M^-1 when M is positive definite, else of the KKT matrix.
+  // Near a singular configuration, a state slightly off the constraint manifold (a stage of
+  // a Runge-Kutta step) makes c inconsistent in the direction A is losing, and the direct
+  // solution blows up as 1/sigma_min: there the augmented Lagrangian takes over.
+  if (has_Minv) {
+    if (note_conditioning(t, q0, solve_schur()) >= kDirectAccept) return;
+  } else if (note_conditioning(t, q0, row_conditioning()) >= kDirectAccept && solve_kkt() > 0 &&
+             kkt_x.allFinite()) {
+    a = kkt_x.head(m.n1);
+    lambda = kkt_x.tail(m.m1);
+    return;
+  }
+  // Near a singular configuration: the augmented Lagrangian (M + alpha A^T A) stays positive
+  // definite and regularizes the degenerate direction.
+  row_scale_of(A, col_scale, row_scale);
+  llt_H.compute(H_of(alpha));
+  ++stats.factorizations;
+  if (llt_H.info() != Eigen::Success)
+    throw Error("forward dynamics of '" + m.name +
+                    "': the mass matrix is not positive on "
+                    "the mechanism's motions at t = " +
+                    fmt(t) + " (a body without mass or inertia?)",
+                m.name, t);
+  // Iterate in residual form, warm-started from the last accepted multipliers (reset if not
+  // finite): r1 = f + B u - M a - A^T lambda, r2 = c - A a; H da = r1 + alpha A^T N^2 r2,
+  // a += da, lambda -= alpha N^2 (c - A a). Written on the true residuals, the iteration also
+  // refines away the rounding of the (ill-conditioned) H solves. It stops when converged or
+  // when the residual no longer halves: there the penalty regularizes the constraint instead
+  // of enforcing it with unbounded multipliers, and the result is flagged as inaccurate
+  // (accel_ok = false) so that an explicit integrator can step over this instant.
+  if (!lambda.allFinite()) lambda.setZero();
+  a.setZero();
+  double prev = INFINITY;
+  int it = 0;
+  // Both residuals are measured in dimensionless terms: the generalized forces as D r1 against
+  // D (f + B u) and D A^T lambda, the constraint rows as N r2 against N c plus a tenth of the
+  // accelerations D^-1 a (so that a state at rest, c = 0, is judged on the size of a).
+  auto inf_scaled = [](const VectorXd& v, const VectorXd& sc, bool divide) {
+    double x = 0;
+    for (Eigen::Index k = 0; k < v.size(); ++k)
+      x = std::max(x, std::abs(divide ? v[k] / sc[k] : v[k] * sc[k]));
+    return x;
+  };
+  for (; it < 40; ++it) {
+    tmp0 = rhs;
+    tmp0.noalias() -= M * a;
+    tmp1.noalias() = A.transpose() * lambda;
+    tmp0 -= tmp1;  // r1
+    ap.head(m.m1) = c;
+    ap.head(m.m1).noalias() -= A * a;  // r2
+    const double s1 = inf_scaled(rhs, col_scale, false) + inf_scaled(tmp1, col_scale, false);
+    const double s2 = inf_scaled(c, row_scale, false) + 0.1 * inf_scaled(a, col_scale, true);
+    const double e = std::max(inf_scaled(tmp0, col_scale, false) / (s1 + 1e-300),
+                              inf_scaled(ap.head(m.m1), row_scale, false) / (s2 + 1e-300));
+    if (it > 0 && (e <= 1e-14 || e > 0.5 * prev)) break;
+    prev = e;
+    ap.head(m.m1).array() *= row_scale.array().square();
+    tmp0.noalias() += alpha * A.transpose() * ap.head(m.m1);
+    llt_H.solveInPlace(tmp0);
+    a += tmp0;
+    ap.head(m.m1) = c;
+    ap.head(m.m1).noalias() -= A * a;
+    ap.head(m.m1).array() *= row_scale.array().square();
+    lambda.noalias() -= alpha * ap.head(m.m1);
+  }
+  stats.solver_iterations += it;
+  accel_residual = prev;
+  accel_ok = prev <= kAlfAccept;
+  ++stats.regularized_evaluations;
+  if (!lambda.allFinite()) lambda.setZero();
+}
+
+void ForwardData::solve_lagrange(double t, const VectorXd& q0) {
+  if (!projects()) note_conditioning(t, q0, row_conditioning());
+  const double r = solve_kkt();
+  if (r < 1e-14)
+    throw Error("forward dynamics of '" + m.name + "': [M A^T; A 0] is singular at t = " + fmt(t) +
+                    " s (singular configuration; use the augmented Lagrangian)",
+                m.name, t);
+  a = kkt_x.head(m.n1);
+  lambda = kkt_x.tail(m.m1);
+  accel_ok = r >= kKktAccept;
+}
+
+void ForwardData::solve_null_space(double t, const VectorXd& q0) {
+  if (!projects()) note_conditioning(t, q0, row_conditioning());
+  if (independent.empty()) choose_independent(q0, t);
+  auto build = [&] {
+    K.setZero();
+    K.topRows(m.m1) = A;
+    for (int k = 0; k < m.dof; ++k) K(m.m1 + k, independent[k]) = 1.0;
+    ++stats.factorizations;
+    return lu_K_->compute(K);
+  };
+  if (build() < 1e-8) {  // partition switch: re-choose the independent variables
+    choose_independent(q0, t);
+    velocity_jacobian(m, q0, t, A, b);
+    if (build() < 1e-14)
+      throw Error("forward dynamics of '" + m.name + "': no independent coordinates at t = " +
+                      fmt(t) + " s (singular configuration; use the augmented Lagrangian)",
+                  m.name, t);
+  }
+  // a = a_p + C x with a_p = K^-1 [c; 0], C = K^-1 [0; I]; C^T M C x = C^T (f + B u - M a_p)
+  ap.setZero();
+  ap.head(m.m1) = c;
+  lu_K_->solve_in_place(ap);
+  for (int k = 0; k < m.dof; ++k) {
+    auto col = S.col(k);
+    col.setZero();
+    col[m.m1 + k] = 1.0;
+    lu_K_->solve_in_place(col);
+  }
+  CtMC.noalias() = S.transpose() * M * S;
+  red.noalias() = S.transpose() * (rhs - M * ap);
+  llt_red.compute(CtMC);
+  if (llt_red.info() != Eigen::Success)
+    throw Error("forward dynamics of '" + m.name +
+                    "': the reduced mass matrix C^T M C is "
+                    "not positive definite at t = " +
+                    fmt(t) + " (a body without mass?)",
+                m.name, t);
+  llt_red.solveInPlace(red);
+  a = ap;
+  a.noalias() += S * red;
 }
 
 double ForwardData::note_conditioning(double t, const VectorXd& q0, double ratio) {
@@ -376,8 +427,8 @@ void ForwardData::project(double t, VectorXd& q0, VectorXd& q1, double tol_pos, 
 
 void ForwardData::compute_reactions(double t, const VectorXd& q0, const VectorXd& q1) {
   A.setZero();
-  entries.clear();
-  detail::SlotRecordSink sink{A, m, entries};
+  entries_.clear();
+  detail::SlotRecordSink sink{A, m, entries_};
   for (const auto& k : m.constraints) detail::velocity_rows(m, k, q0, t, b, sink);
   body_inertia(m, a, la);
   body_applied(m, q0, q1, t, local);
@@ -388,7 +439,7 @@ void ForwardData::compute_reactions(double t, const VectorXd& q0, const VectorXd
   if (m.m1 > 0) {
     lam_ls = regularized_normal_solve(A, Bu - w, 1e-14);
   }
-  detail::joint_reactions(m, entries, lam_ls, u, la, edge_force, edge_offset, reactions);
+  detail::joint_reactions(m, entries_, lam_ls, u, la, edge_force, edge_offset, reactions);
 }
 
 double ForwardData::pivot_indicator(double t, const VectorXd& q0) {
@@ -396,150 +447,22 @@ double ForwardData::pivot_indicator(double t, const VectorXd& q0) {
   return row_conditioning();
 }
 
-void energy_rates(ForwardData& d, double t, const VectorXd& q0, const VectorXd& q1, double* rates) {
-  rates[kInputWork] = d.Bu.dot(q1);
-  rates[kLoadWork] = load_power(d.m, q0, q1, t);
-  // A time-dependent constraint (A q1 = b, b != 0) moves its bodies: its force -A^T lambda =
-  // M a - f - B u does the work -lambda^T b. Zero (not evaluated) for fixed constraints.
-  rates[kConstraintWork] =
-      d.m.m1 > 0 && d.b.lpNorm<Eigen::Infinity>() > 0 ? q1.dot(d.M * d.a - d.f - d.Bu) : 0.0;
-  rates[kDissipated] = damping_power(d.m, q0, q1);
+const VectorXd& forward_accelerations(const Model& model, ForwardData& d, double t,
+                                      const VectorXd& q0, const VectorXd& q1,
+                                      const VectorXd& efforts) {
+  if (&model != &d.m)
+    throw Error(
+        "forward_accelerations: the workspace was built for another model ('" + d.m.name + "')",
+        model.name);
+  if (q0.size() != model.n0 || q1.size() != model.n1 || efforts.size() != model.n_inputs())
+    throw Error("forward_accelerations of '" + model.name + "': the state (" +
+                    std::to_string(q0.size()) + " coordinates, " + std::to_string(q1.size()) +
+                    " quasi-velocities) or the efforts (" + std::to_string(efforts.size()) +
+                    ") do not match the model (" + std::to_string(model.n0) + ", " +
+                    std::to_string(model.n1) + ", " + std::to_string(model.n_inputs()) + ")",
+                model.name, t);
+  d.accelerations(t, q0, q1, d.o.integrator == Integrator::baumgarte, efforts);
+  return d.a;
 }
 
-// An integrator that does not project (cvode_adams, baumgarte) cannot hold the constraints
-// through a singular configuration: the drift in the direction the Jacobian loses is not
-// corrected and the run can leave its branch without any other sign (the double four-bar on
-// cvode_adams: tips 1 m off, residuals 1e-7). So such a run stops with an error as soon as one of
-// its evaluations comes near one (below o.singular_warning).
-void Recorder::check_unprojected() {
-  if (d.projects() || m.m1 == 0 || !(d.eval_min_ratio < d.o.singular_warning)) return;
-  velocity_jacobian(m, d.eval_min_q0, d.eval_min_t, d.A, d.b);
-  const SingularDirection s =
-      singular_direction(d.A, d.col_scale, m.velocity_row_labels, m.rate_labels);
-  throw Error("forward dynamics of '" + m.name + "': " + to_string(d.o.integrator) +
-                  " does not project on the constraints and cannot pass the near-singular "
-                  "configuration at t = " +
-                  fmt(d.eval_min_t) + " s (dimensionless pivot ratio " + fmt(d.eval_min_ratio) +
-                  "; nearly dependent constraints " + s.rows + ", nearly undetermined motion of " +
-                  s.variables +
-                  ") without the risk of leaving its branch: use cvode_bdf, dopri5 or rk4, "
-                  "which project",
-              s.variables.empty() ? m.name : s.variables.substr(1, s.variables.find('\'', 1) - 1),
-              d.eval_min_t);
-}
-
-void Recorder::record(double t, const VectorXd& q0, const VectorXd& q1, const double* energies) {
-  check_unprojected();
-  if (d.o.progress) d.o.progress(t);
-  r.time[k] = t;
-  set_row(r.q0, k, q0);
-  set_row(r.q1, k, q1);
-  d.accelerations(t, q0, q1, d.o.integrator == Integrator::baumgarte);
-  set_row(r.a1, k, d.a);
-  d.compute_reactions(t, q0, q1);
-  set_row(r.reactions, k, d.reactions);
-  set_row(r.efforts, k, d.u);
-  r.kinetic[k] = kinetic_energy(m, q1);
-  r.potential[k] = potential_energy(m, q0);
-  r.input_work[k] = energies[kInputWork];
-  r.load_work[k] = energies[kLoadWork];
-  r.constraint_work[k] = energies[kConstraintWork];
-  r.dissipated[k] = energies[kDissipated];
-  VectorXd psi(m.m0);
-  position_residual(m, q0, t, psi);
-  r.residuals(k, 0) = m.m0 ? psi.lpNorm<Eigen::Infinity>() : 0.0;
-  velocity_jacobian(m, q0, t, d.A, d.b);
-  r.residuals(k, 1) = m.m1 ? (d.A * q1 - d.b).lpNorm<Eigen::Infinity>() : 0.0;
-  check_drift(t, q0);
-  const double piv = d.pivot_indicator(t, q0);
-  d.stats.min_pivot_ratio = std::min(d.stats.min_pivot_ratio, piv);
-  if (piv < d.o.singular_warning) {
-    if (!near) near_first = t;
-    near_last = t;
-    if (!near || piv < near_min) {
-      near_min = piv;
-      near_t = t;
-      const SingularDirection s =
-          singular_direction(d.A, d.col_scale, m.velocity_row_labels, m.rate_labels);
-      near_what = "; nearly dependent constraints " + s.rows + ", nearly undetermined motion of " +
-                  s.variables;
-    }
-    near = true;
-  } else {
-    flush_near();
-  }
-  check_finite_sample(m, r, k);
-  ++k;
-}
-
-void Recorder::flush_near() {
-  if (!near) return;
-  near = false;
-  std::string span;
-  if (near_last > near_first)
-    span = ", output times " + fmt(near_first) + " to " + fmt(near_last) + " s";
-  if (d.stats.warnings.size() < 20)
-    d.stats.warnings.push_back("near-singular configuration at t = " + fmt(near_t) +
-                               " s (dimensionless pivot ratio " + fmt(near_min) + span + near_what +
-                               ")");
-}
-
-// Constraint drift at an output time, dimensionless: each position row in the units of the
-// dimensionless coordinates (unit rows of Psi diag(pos_scale)) against the mechanism's size in
-// the same units. Projecting integrators keep it near 1e-13; beyond o.drift_tolerance the run has
-// left the constraint manifold (and possibly its branch): an error naming the time and the worst
-// constraint row (a warning, once, for the integrators that do not project).
-void Recorder::check_drift(double t, const VectorXd& q0) {
-  if (m.m0 == 0 || drift_reported) return;
-  position_jacobian(m, q0, t, d.psi, d.Psi);
-  d.row_scale_of(d.Psi, d.pos_scale, d.pos_row_scale);
-  double size = 0;
-  for (int j = 0; j < m.n0; ++j)
-    if (m.rate_refs[j].body >= 0) size = std::max(size, m.scale / d.pos_scale[j]);
-  if (!(size > 0)) size = m.scale;
-  double worst = 0;
-  int row = 0;
-  for (int i = 0; i < m.m0; ++i) {
-    const double e = std::abs(d.psi[i]) * d.pos_row_scale[i] / size;
-    if (!(e <= worst)) worst = e, row = i;
-  }
-  d.stats.max_drift = std::max(d.stats.max_drift, worst);
-  if (!(worst > d.o.drift_tolerance)) return;
-  drift_reported = true;
-  // without projection the drift grows with the integrator's tolerance: a warning (such a run
-  // stops at a singular configuration, check_unprojected); with projection it is a failure
-  if (!d.projects()) {
-    if (d.stats.warnings.size() < 20)
-      d.stats.warnings.push_back(
-          "the constraints drifted by " + fmt(worst) + " of the mechanism's size at t = " + fmt(t) +
-          " s (worst row '" + m.position_row_labels[row] + "', residual " + fmt(d.psi[row]) +
-          "): " + to_string(d.o.integrator) +
-          " does not project on the constraints (cvode_bdf, dopri5 and rk4 do)");
-    return;
-  }
-  const std::string msg = "forward dynamics of '" + m.name + "': the constraints drifted by " +
-                          fmt(worst) + " of the mechanism's size at t = " + fmt(t) +
-                          " s (worst row '" + m.position_row_labels[row] + "', residual " +
-                          fmt(d.psi[row]) + "; drift tolerance " + fmt(d.o.drift_tolerance) +
-                          "): the motion has left the constraint manifold";
-  throw Error(msg, m.position_row_labels[row], t);
-}
-
-void Recorder::finish() {
-  flush_near();
-}
-
-detail::RunBudget::Settings forward_budget(const Model& m, const ForwardOptions& o,
-                                           std::string hint) {
-  return {.run = "forward dynamics of '" + m.name + "' (" + to_string(o.integrator) + ")",
-          .name = m.name,
-          .t0 = o.t0,
-          .t1 = o.t1,
-          .max_steps = o.max_steps,
-          .max_seconds = o.max_seconds,
-          .monitor = o.monitor,
-          .interval = o.monitor_interval,
-          .hint = std::move(hint)};
-}
-
-}  // namespace mo2d::detail
+}  // namespace mo2d

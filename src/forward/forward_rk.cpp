@@ -10,7 +10,7 @@
 #include <array>
 #include <cmath>
 
-#include "forward/forward_data.hpp"
+#include "forward/forward_run.hpp"
 #include "mo2d/dynamics.hpp"
 #include "mo2d/error.hpp"
 #include "run/run_budget.hpp"

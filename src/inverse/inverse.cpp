@@ -10,12 +10,12 @@
 #include <sstream>
 
 #include "constraints/constraints.hpp"
-#include "run/cpu_time.hpp"
+#include "linalg/small_lu.hpp"
 #include "mo2d/dynamics.hpp"
 #include "mo2d/error.hpp"
 #include "mo2d/kinematics.hpp"
-#include "mo2d/suggest.hpp"
 #include "output/result_rows.hpp"
+#include "run/cpu_time.hpp"
 #include "run/run_budget.hpp"
 
 namespace mo2d {
@@ -183,8 +183,8 @@ InverseData::InverseData(const Model& m, std::span<const Prescribed> prescribed,
   CtB = MatrixXd::Zero(dof, nu);
   Ctw = VectorXd::Zero(dof);
   row_residual = VectorXd::Zero(m.m1);
-  lu_pos = detail::SmallLU(nfree);
-  lu_K = detail::SmallLU(m.n1);
+  lu_pos = std::make_unique<detail::SmallLU>(nfree);
+  lu_K = std::make_unique<detail::SmallLU>(m.n1);
   lu_u = Eigen::PartialPivLU<MatrixXd>(dof);
   edge_force.assign(detail::merge_edge_layout(m, edge_offset), 0.0);
   // size the entry list with a dry run (the pattern is fixed)
@@ -206,6 +206,8 @@ InverseData::InverseData(const Model& m, std::span<const Prescribed> prescribed,
   q1_prev = VectorXd::Zero(m.n1);
   a1_prev = VectorXd::Zero(m.n1);
 }
+
+InverseData::~InverseData() = default;
 
 namespace {
 
@@ -287,12 +289,12 @@ NewtonStatus newton(const Model& m, InverseData& d, double t) {
       status = NewtonStatus::diverged;
       break;
     }
-    if (d.lu_pos.compute(d.J) < o.singular_pivot_ratio) {
+    if (d.lu_pos->compute(d.J) < o.singular_pivot_ratio) {
       status = NewtonStatus::singular;
       break;
     }
     d.trial = d.psi;
-    d.lu_pos.solve_in_place(d.trial);  // Newton step on the free coordinates
+    d.lu_pos->solve_in_place(d.trial);  // Newton step on the free coordinates
     double alpha = 1;
     for (;;) {
       d.q0_trial = d.q0;
@@ -350,7 +352,7 @@ void check_branch(const Model& m, InverseData& d, double t) {
 // dimensionless K changes where the path crosses a singular configuration; a run of samples with
 // the pivot ratio below near_singular_pivot_ratio is reported at its smallest value.
 void check_singular_passage(const Model& m, InverseData& d, double t) {
-  d.det_sign = d.lu_K.det_sign();
+  d.det_sign = d.lu_K->det_sign();
   if (d.has_previous && d.det_sign * d.det_sign_prev < 0)
     d.warnings.push_back("singular configuration passed between t = " + fmt(d.t_prev) +
                          " s and t = " + fmt(t) + " s (" + prescribed_values(d) +
@@ -445,10 +447,10 @@ void inverse_dynamics_sample(const Model& m, InverseData& d, double t) {
   }
   for (int k = 0; k < dof; ++k) d.k_row[m.m1 + k] = 1 / d.col_scale[d.p_index[k]];
   d.Ks.noalias() = d.k_row.asDiagonal() * d.K * d.col_scale.asDiagonal();
-  d.pivot_ratio = d.lu_K.compute(d.Ks);
+  d.pivot_ratio = d.lu_K->compute(d.Ks);
   auto solve_K = [&](auto&& x) {
     x.array() *= d.k_row.array();
-    d.lu_K.solve_in_place(x);
+    d.lu_K->solve_in_place(x);
     x.array() *= d.col_scale.array();
   };
   if (d.pivot_ratio < o.singular_pivot_ratio) {
@@ -511,7 +513,7 @@ void inverse_dynamics_sample(const Model& m, InverseData& d, double t) {
   d.rhs -= d.w;
   d.z = d.rhs;  // K^-T = R Ks^-T D
   d.z.array() *= d.col_scale.array();
-  d.lu_K.solve_transpose_in_place(d.z);
+  d.lu_K->solve_transpose_in_place(d.z);
   d.z.array() *= d.k_row.array();
   d.lambda = d.z.head(m.m1);
 
@@ -534,15 +536,17 @@ void finish_inverse_warnings(InverseData& d) {
                        d.near_what + ")");
 }
 
-InverseResult inverse_dynamics(const Model& m, std::span<const Prescribed> prescribed,
-                               const InverseOptions& options) {
+Trajectory inverse_dynamics(const Model& m, std::span<const Prescribed> prescribed,
+                            const InverseOptions& options) {
   InverseData d(m, prescribed, options);
   const int N = options.samples;
-  InverseResult r;
+  Trajectory r;
+  r.kind = RunKind::inverse;
   r.coordinate_labels = m.coordinate_labels;
   r.rate_labels = m.rate_labels;
   r.input_labels = m.input_labels();
   r.reaction_labels = m.reaction_labels();
+  r.residual_labels = {"residual.position", "residual.velocity", "residual.acceleration"};
   r.time.resize(N);
   r.q0.resize(N, m.n0);
   r.q1.resize(N, m.n1);
@@ -574,19 +578,9 @@ InverseResult inverse_dynamics(const Model& m, std::span<const Prescribed> presc
     r.residuals.row(k) << d.residual_position, d.residual_velocity, d.residual_acceleration;
   }
   finish_inverse_warnings(d);
-  r.warnings = d.warnings;
-  r.cpu_seconds = detail::cpu_seconds() - start;
+  r.stats.warnings = d.warnings;
+  r.stats.cpu_seconds = detail::cpu_seconds() - start;
   return r;
-}
-
-int InverseResult::column(const std::string& l) const {
-  return label_index(coordinate_labels, l, "coordinate");
-}
-int InverseResult::input(const std::string& l) const {
-  return label_index(input_labels, l, "input");
-}
-int InverseResult::reaction(const std::string& l) const {
-  return label_index(reaction_labels, l, "reaction");
 }
 
 // ---- recursive orthogonal complement (Theorem 2.10) ---------------------------------------------

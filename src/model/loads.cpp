@@ -5,7 +5,7 @@
 #include <cmath>
 
 #include "mo2d/error.hpp"
-#include "mo2d/suggest.hpp"
+#include "model/suggest.hpp"
 #include "model/build_stages.hpp"
 
 namespace mo2d::build {

@@ -6,7 +6,7 @@
 
 #include "constraints/constraints.hpp"
 #include "mo2d/error.hpp"
-#include "mo2d/suggest.hpp"
+#include "model/suggest.hpp"
 
 namespace mo2d {
 

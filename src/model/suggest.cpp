@@ -1,5 +1,5 @@
 // "Did you mean" suggestions: the candidate at the smallest edit distance, if close enough.
-#include "mo2d/suggest.hpp"
+#include "model/suggest.hpp"
 
 #include <algorithm>
 #include <numeric>

@@ -9,7 +9,7 @@
 
 #include "constraints/constraints.hpp"
 #include "mo2d/error.hpp"
-#include "mo2d/suggest.hpp"
+#include "model/suggest.hpp"
 #include "model/build_stages.hpp"
 
 namespace mo2d::build {

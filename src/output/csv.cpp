@@ -1,44 +1,24 @@
 // CSV writing (labels in the header, 17 significant digits, atomic replace).
 #include "mo2d/csv.hpp"
 
-#include <cerrno>
 #include <cmath>
-#include <cstdio>
-#include <cstring>
 #include <functional>
 #include <sstream>
 #include <vector>
 
 #include "mo2d/error.hpp"
-#include "mo2d/output.hpp"
+#include "output/write_file.hpp"
 
 namespace mo2d {
 
-void write_file_atomically(const std::string& path, const std::string& content) {
-  if (OutputSet* set = OutputSet::active()) return set->add(path, content);
-  const std::string tmp = detail::temporary_path(path);
-  const int slot = detail::register_temporary(tmp);  // removed if a signal ends the process
-  try {
-    detail::write_temporary(tmp, path, content);
-  } catch (...) {
-    detail::unregister_temporary(slot);
-    throw;
-  }
-  if (std::rename(tmp.c_str(), path.c_str()) != 0) {
-    const std::string why = std::strerror(errno);
-    std::remove(tmp.c_str());
-    detail::unregister_temporary(slot);
-    throw Error("cannot rename '" + tmp + "' to '" + path + "': " + why, path);
-  }
-  detail::unregister_temporary(slot);
-}
+using Eigen::MatrixXd;
+using Eigen::VectorXd;
 
 namespace {
 
-// Columns shared by inverse and forward results: t, coordinates, quasi-velocities, their
-// derivatives (label + ".dot"), efforts, reactions.
-template <class Result>
-std::vector<std::string> common_labels(const Result& r) {
+// Columns of every trajectory: t, coordinates, quasi-velocities, their derivatives (label +
+// ".dot"), efforts, reactions.
+std::vector<std::string> common_labels(const Trajectory& r) {
   std::vector<std::string> l{"t"};
   l.insert(l.end(), r.coordinate_labels.begin(), r.coordinate_labels.end());
   l.insert(l.end(), r.rate_labels.begin(), r.rate_labels.end());
@@ -68,8 +48,7 @@ struct Row {
   }
 };
 
-template <class Result>
-void common_row(Row& row, const Result& r, int k) {
+void common_row(Row& row, const Trajectory& r, int k) {
   row.put(r.time[k]);
   row.put_row(r.q0, k);
   row.put_row(r.q1, k);
@@ -94,42 +73,28 @@ std::string csv_text(const std::vector<std::string>& labels, int rows,
 
 }  // namespace
 
-std::string inverse_csv(const InverseResult& r) {
+std::string trajectory_csv(const Trajectory& r) {
   std::vector<std::string> labels = common_labels(r);
-  for (const char* l : {"residual.position", "residual.velocity", "residual.acceleration"})
-    labels.push_back(l);
+  if (r.has_energies())
+    for (const char* l : {"energy.kinetic", "energy.potential", "work.inputs", "energy.dissipated",
+                          "work.loads", "work.constraints"})
+      labels.push_back(l);
+  labels.insert(labels.end(), r.residual_labels.begin(), r.residual_labels.end());
   return csv_text(
       labels, static_cast<int>(r.time.size()),
       [&](Row& row, int k) {
         common_row(row, r, k);
-        for (int j = 0; j < 3; ++j) row.put(r.residuals(k, j));
+        if (r.has_energies())
+          for (double v : {r.kinetic[k], r.potential[k], r.input_work[k], r.dissipated[k],
+                           r.load_work[k], r.constraint_work[k]})
+            row.put(v);
+        row.put_row(r.residuals, k);
       },
       r.time);
 }
 
-std::string forward_csv(const ForwardResult& r) {
-  std::vector<std::string> labels = common_labels(r);
-  for (const char* l : {"energy.kinetic", "energy.potential", "work.inputs", "energy.dissipated",
-                        "work.loads", "work.constraints", "residual.position", "residual.velocity"})
-    labels.push_back(l);
-  return csv_text(
-      labels, static_cast<int>(r.time.size()),
-      [&](Row& row, int k) {
-        common_row(row, r, k);
-        for (double v :
-             {r.kinetic[k], r.potential[k], r.input_work[k], r.dissipated[k], r.load_work[k],
-              r.constraint_work[k], r.residuals(k, 0), r.residuals(k, 1)})
-          row.put(v);
-      },
-      r.time);
-}
-
-void write_forward_csv(const ForwardResult& r, const std::string& path) {
-  write_file_atomically(path, forward_csv(r));
-}
-
-void write_inverse_csv(const InverseResult& r, const std::string& path) {
-  write_file_atomically(path, inverse_csv(r));
+void write_trajectory_csv(const Trajectory& r, const std::string& path) {
+  write_file_atomically(path, trajectory_csv(r));
 }
 
 }  // namespace mo2d

@@ -20,6 +20,7 @@
 #include <thread>
 
 #include "mo2d/error.hpp"
+#include "output/write_file.hpp"
 
 namespace mo2d {
 
@@ -149,6 +150,25 @@ void write_temporary(const std::string& tmp, const std::string& path, const std:
 }
 
 }  // namespace detail
+
+void write_file_atomically(const std::string& path, const std::string& content) {
+  if (OutputSet* set = OutputSet::active()) return set->add(path, content);
+  const std::string tmp = detail::temporary_path(path);
+  const int slot = detail::register_temporary(tmp);  // removed if a signal ends the process
+  try {
+    detail::write_temporary(tmp, path, content);
+  } catch (...) {
+    detail::unregister_temporary(slot);
+    throw;
+  }
+  if (std::rename(tmp.c_str(), path.c_str()) != 0) {
+    const std::string why = std::strerror(errno);
+    std::remove(tmp.c_str());
+    detail::unregister_temporary(slot);
+    throw Error("cannot rename '" + tmp + "' to '" + path + "': " + why, path);
+  }
+  detail::unregister_temporary(slot);
+}
 
 void remove_temporaries_on_signal() {
   static std::atomic<bool> installed{false};

@@ -8,6 +8,8 @@
 #include <numbers>
 #include <numeric>
 
+#include "model/suggest.hpp"
+
 namespace mo2d {
 
 namespace {

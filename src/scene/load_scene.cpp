@@ -13,6 +13,7 @@
 
 #include "load_system.hpp"
 #include "mo2d/scene.hpp"
+#include "model/suggest.hpp"
 #include "reader.hpp"
 
 namespace mo2d {

@@ -3,6 +3,8 @@
 
 #include <algorithm>
 
+#include "model/suggest.hpp"
+
 namespace mo2d::scene_detail {
 
 namespace {

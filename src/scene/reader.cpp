@@ -5,6 +5,8 @@
 #include <cmath>
 #include <set>
 
+#include "model/suggest.hpp"
+
 namespace mo2d::scene_detail {
 
 const char* type_name(const YAML::Node& node) {

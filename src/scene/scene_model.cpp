@@ -5,6 +5,7 @@
 
 #include "mo2d/expression.hpp"
 #include "mo2d/scene.hpp"
+#include "model/suggest.hpp"
 
 namespace mo2d {
 

@@ -33,8 +33,8 @@ TEST(Constraints, RollingDiscVelocityLevelConstraint) {
   EXPECT_EQ(model.dof, 1);
   EXPECT_FALSE(model.holonomic);
   auto x = [](Jet t) { return 0.3 * sin(2.0 * t) + 0.1 * t * t; };
-  const InverseResult res = inverse_dynamics(model, std::vector<Prescribed>{{"disc.C.x", x}},
-                                             {.t0 = 0, .t1 = 3, .samples = 61});
+  const Trajectory res = inverse_dynamics(model, std::vector<Prescribed>{{"disc.C.x", x}},
+                                          {.t0 = 0, .t1 = 3, .samples = 61});
   for (int i = 0; i < res.time.size(); ++i) {
     const Jet xi = x(Jet(res.time[i], 1, 0));
     EXPECT_NEAR(res.efforts(i, 0), (m + I / (r * r)) * xi.dd, 1e-12);
@@ -64,8 +64,8 @@ TEST(Constraints, GearPairPositionLevelConstraint) {
   const Model model = build_model(s);
   EXPECT_EQ(model.dof, 1);
   auto th = [](Jet t) { return 1.2 * sin(1.5 * t); };
-  const InverseResult res = inverse_dynamics(model, std::vector<Prescribed>{{"th1", th}},
-                                             {.t0 = 0, .t1 = 4, .samples = 41});
+  const Trajectory res = inverse_dynamics(model, std::vector<Prescribed>{{"th1", th}},
+                                          {.t0 = 0, .t1 = 4, .samples = 41});
   for (int i = 0; i < res.time.size(); ++i) {
     const Jet a = th(Jet(res.time[i], 1, 0));
     EXPECT_NEAR(res.efforts(i, 0), (I1 + I2 / 4) * a.dd, 1e-12);
@@ -98,7 +98,7 @@ TEST(Constraints, RheonomicUserConstraintDrivesThePendulum) {
   s.set_gravity({0, -g});
   const Model model = build_model(s);
   EXPECT_EQ(model.dof, 0);
-  const InverseResult res =
+  const Trajectory res =
       inverse_dynamics(model, std::vector<Prescribed>{}, {.t0 = 0, .t1 = 2, .samples = 41});
   for (int i = 0; i < res.time.size(); ++i) {
     const Jet th = theta(Jet(res.time[i], 1, 0));

@@ -29,10 +29,10 @@ int main() {
   run.t0 = 0;
   run.t1 = 2;
   run.samples = 201;
-  const InverseResult r = inverse_dynamics(model, motion, run);
+  const Trajectory r = inverse_dynamics(model, motion, run);
 
   // Compare the pivot torque with the closed form m L^2 theta'' + m g L cos(theta).
-  const int u = r.input("pivot.torque");
+  const int u = r.effort("pivot.torque");
   double max_error = 0;
   for (int k = 0; k < r.time.size(); ++k) {
     const double t = r.time[k];

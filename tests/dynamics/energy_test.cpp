@@ -63,7 +63,7 @@ TEST(EnergyBalance, ConstantForceOnASlider) {
   const Model model = block_on_rail(F, 5.0);
   const State s = consistent_state(model, {.positions = {}, .velocities = {{"rail.v", v0}}});
   for (Integrator integ : kAll) {
-    const ForwardResult r = forward_dynamics(model, s, run(integ, 1.0));
+    const Trajectory r = forward_dynamics(model, s, run(integ, 1.0));
     const int ix = r.column("block.P.x");
     for (int i = 0; i < r.time.size(); ++i) {
       const double t = r.time[i], dx = v0 * t + F * t * t / (2 * m);
@@ -91,7 +91,7 @@ TEST(EnergyBalance, TorqueOnARotor) {
   const Model model = build_model(s);
   const State st = consistent_state(model, {.positions = {}, .velocities = {{"disc.w", w0}}});
   for (Integrator integ : kAll) {
-    const ForwardResult r = forward_dynamics(model, st, run(integ, 1.0));
+    const Trajectory r = forward_dynamics(model, st, run(integ, 1.0));
     const int ia = r.column("disc.angle");
     for (int i = 0; i < r.time.size(); ++i) {
       const double t = r.time[i], dth = w0 * t + tau * t * t / (2 * I);
@@ -109,7 +109,7 @@ TEST(EnergyBalance, DampedSpringWithAPeriodicForce) {
   const Model model = block_on_rail(0, 0, 50.0, 1.5, [](double t) { return 4 * std::sin(7 * t); });
   const State s = consistent_state(model, {.positions = {}, .velocities = {{"rail.v", 0.4}}});
   for (Integrator integ : kAll) {
-    const ForwardResult r = forward_dynamics(model, s, run(integ, 3.0, 61));
+    const Trajectory r = forward_dynamics(model, s, run(integ, 3.0, 61));
     const Eigen::Index last = r.time.size() - 1;
     EXPECT_GT(r.dissipated[last], 0.3) << to_string(integ);
     EXPECT_GT(r.load_work.cwiseAbs().maxCoeff(), 0.1) << to_string(integ);
@@ -133,7 +133,7 @@ TEST(EnergyBalance, WorkOfAMovingConstraint) {
   ASSERT_EQ(model.dof, 0);
   const State st = consistent_state(model, {});
   for (Integrator integ : {Integrator::rk4, Integrator::dopri5, Integrator::cvode_bdf}) {
-    const ForwardResult r = forward_dynamics(model, st, run(integ, 1.0));
+    const Trajectory r = forward_dynamics(model, st, run(integ, 1.0));
     for (int i = 0; i < r.time.size(); ++i) {
       const double v = 0.3 * std::cos(3 * r.time[i]);
       EXPECT_NEAR(r.constraint_work[i], 0.5 * 2.0 * (v * v - 0.09), 1e-8) << to_string(integ);
@@ -155,7 +155,7 @@ TEST(EnergyBalance, EngineBalancesForEveryIntegrator) {
     o.t1 = 0.2;  // five revolutions, two firings
     o.samples = 401;
     o.step = 2e-5;  // rk4, baumgarte: 157 rad/s and a pressure pulse of a few ms
-    const ForwardResult r = forward_dynamics(model, s0, o);
+    const Trajectory r = forward_dynamics(model, s0, o);
     std::printf("%s: balance error %.3g J\n", to_string(integ), energy_balance_error(r));
     const double scale = r.load_work.cwiseAbs().maxCoeff() + r.kinetic.maxCoeff();
     EXPECT_GT(r.load_work.cwiseAbs().maxCoeff(), 100.0) << to_string(integ);  // the gas force
@@ -171,16 +171,16 @@ TEST(EnergyBalance, AMissingTermGivesALargeError) {
   ForwardOptions o = forward_options(scene, model);
   o.t1 = 0.2;
   o.samples = 101;
-  ForwardResult r = forward_dynamics(model, initial_state(scene, model), o);
+  Trajectory r = forward_dynamics(model, initial_state(scene, model), o);
   const double ok = energy_balance_error(r), work = r.load_work.cwiseAbs().maxCoeff();
   EXPECT_LE(ok, 1e-6 * work);
-  ForwardResult no_load = r;
+  Trajectory no_load = r;
   no_load.load_work.setZero();
   EXPECT_GE(energy_balance_error(no_load), 0.9 * work);
-  ForwardResult no_damper = r;
+  Trajectory no_damper = r;
   no_damper.dissipated.setZero();
   EXPECT_GE(energy_balance_error(no_damper), 0.9 * r.dissipated[r.time.size() - 1]);
-  ForwardResult wrong_potential = r;
+  Trajectory wrong_potential = r;
   wrong_potential.potential.array() += 1e-3 * r.time.array();  // a potential that drifts 1 mJ/s
   EXPECT_GE(energy_balance_error(wrong_potential), 0.9 * 1e-3 * 0.2 - ok);
 }

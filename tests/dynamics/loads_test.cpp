@@ -26,7 +26,7 @@ TEST(Loads, ForceAtAPointAndTorqueOnABody) {
                .fy = fy});
   s.add_torque({.name = "twist", .body = "link", .torque = T});
   const Model model = build_model(s);
-  const InverseResult res = inverse_dynamics(model, ex.motion, ex.run);
+  const Trajectory res = inverse_dynamics(model, ex.motion, ex.run);
   for (int i = 0; i < res.time.size(); ++i) {
     const double t = res.time[i];
     const Jet th = ex.motion[0].motion(Jet(t, 1, 0));
@@ -57,8 +57,8 @@ TEST(Loads, ForceBetweenNodesAndCentreOfMassAsPoint) {
                .fy = [](double t) { return 1.0 + t; }});
   const Model model = build_model(s);
   auto th = [](Jet t) { return 0.5 * t * t; };  // angle'' = 1
-  const InverseResult res = inverse_dynamics(model, std::vector<Prescribed>{{"angle", th}},
-                                             {.t0 = 0, .t1 = 1, .samples = 11});
+  const Trajectory res = inverse_dynamics(model, std::vector<Prescribed>{{"angle", th}},
+                                          {.t0 = 0, .t1 = 1, .samples = 11});
   for (int i = 0; i < res.time.size(); ++i) {
     const double t = res.time[i], a = 0.5 * t * t;
     // point (0.6 L, 0.1) in the body frame rotated by a

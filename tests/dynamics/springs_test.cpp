@@ -35,7 +35,7 @@ TEST(Springs, LinearSpringOscillatesAtItsNaturalFrequency) {
   const double k = 50.0, m = 2.0, w = std::sqrt(k / m);
   const Model model = mass_on_rail(k, 0.0);
   const State s = consistent_state(model, {.positions = {}, .velocities = {{"rail.v", 0.0}}});
-  const ForwardResult r = forward_dynamics(
+  const Trajectory r = forward_dynamics(
       model, s, {.t0 = 0, .t1 = 2.5, .samples = 51, .integrator = Integrator::rk4, .step = 1e-3});
   const int ix = r.column("block.P.x");
   for (int i = 0; i < r.time.size(); ++i)
@@ -50,14 +50,14 @@ TEST(Springs, DampedEnergyBalance) {
   const Model model = mass_on_rail(50.0, 1.5);
   const State s = consistent_state(model, {.positions = {}, .velocities = {{"rail.v", 0.4}}});
   for (auto integ : {Integrator::rk4, Integrator::cvode_bdf}) {
-    const ForwardResult r = forward_dynamics(model, s,
-                                             {.t0 = 0,
-                                              .t1 = 3,
-                                              .samples = 31,
-                                              .integrator = integ,
-                                              .rtol = 1e-10,
-                                              .atol = 1e-10,
-                                              .step = 1e-3});
+    const Trajectory r = forward_dynamics(model, s,
+                                          {.t0 = 0,
+                                           .t1 = 3,
+                                           .samples = 31,
+                                           .integrator = integ,
+                                           .rtol = 1e-10,
+                                           .atol = 1e-10,
+                                           .step = 1e-3});
     const VectorXd total = r.kinetic + r.potential + r.dissipated;
     EXPECT_LE((total.array() - total[0]).abs().maxCoeff(), 1e-7 * total[0]) << to_string(integ);
     EXPECT_GT(r.dissipated[r.time.size() - 1], 0.5 * total[0]) << to_string(integ);  // it did damp
@@ -82,7 +82,7 @@ TEST(Springs, TorsionalSpringAtARevoluteJoint) {
   const Model model = build_model(s);
   const State st = consistent_state(model, {.positions = {}, .velocities = {{"bar.w", 0.0}}});
   const double w = std::sqrt(k / (m * L * L / 3));
-  const ForwardResult r = forward_dynamics(
+  const Trajectory r = forward_dynamics(
       model, st, {.t0 = 0, .t1 = 3, .samples = 31, .integrator = Integrator::rk4, .step = 1e-3});
   const int ia = r.column("bar.angle");
   for (int i = 0; i < r.time.size(); ++i)
@@ -146,7 +146,7 @@ TEST(Springs, SpringOnABodyPinnedAwayFromTheOrigin) {
     const Model model = build_model(s);
     EXPECT_NEAR(potential_energy(model, model.q0), 0.0, 1e-12) << "ax = " << ax;
     const State st = consistent_state(model, {.positions = {}, .velocities = {{"rod.w", 0.0}}});
-    const ForwardResult r = forward_dynamics(
+    const Trajectory r = forward_dynamics(
         model, st, {.t0 = 0, .t1 = 1, .samples = 11, .integrator = Integrator::dopri5});
     const int iy = r.column("rod.P.y");
     for (int i = 0; i < r.time.size(); ++i)

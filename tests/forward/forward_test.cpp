@@ -47,7 +47,7 @@ double bottom_passage(const Pendulum& p, ForwardOptions o) {
   o.t1 = 2 * p.quarter_period;
   o.samples = 3;
   o.stop_when = [ix](double, const VectorXd& q0, const VectorXd&) { return q0[ix]; };
-  const ForwardResult r = forward_dynamics(p.model, p.start, o);
+  const Trajectory r = forward_dynamics(p.model, p.start, o);
   EXPECT_TRUE(r.stats.stopped_by_event);
   return r.stats.t_end;
 }
@@ -109,13 +109,13 @@ TEST(Forward, CvodeErrorFallsWithTolerance) {
   for (auto integ : {Integrator::cvode_bdf, Integrator::cvode_adams}) {
     double previous = INFINITY;
     for (double tol : {1e-5, 1e-7, 1e-9, 1e-11}) {
-      const ForwardResult r = forward_dynamics(p.model, p.start,
-                                               {.t0 = 0,
-                                                .t1 = p.quarter_period,
-                                                .samples = 2,
-                                                .integrator = integ,
-                                                .rtol = tol,
-                                                .atol = tol});
+      const Trajectory r = forward_dynamics(p.model, p.start,
+                                            {.t0 = 0,
+                                             .t1 = p.quarter_period,
+                                             .samples = 2,
+                                             .integrator = integ,
+                                             .rtol = tol,
+                                             .atol = tol});
       const double e = std::abs(r.q0(1, ix));
       EXPECT_LT(e, 0.5 * previous) << to_string(integ) << " tol " << tol;
       EXPECT_LT(e, 1000 * tol) << to_string(integ) << " tol " << tol;
@@ -148,7 +148,7 @@ TEST(Forward, EnergyIsConserved) {
   // 100 periods: the double pendulum swings in ~1.1 s (110 s), the four-bar's crank turns in
   // ~0.49 s (50 s). RK4 with projection, h = 2.5e-4 s (measured: 6.8e-10 and 6.4e-10; at
   // h = 5e-4 the drift is 1.8e-8 and 3.7e-8, RK4's h^4 error accumulating over the run).
-  const ForwardResult r = forward_dynamics(
+  const Trajectory r = forward_dynamics(
       m, s, {.t0 = 0, .t1 = 110, .samples = 1101, .integrator = Integrator::rk4, .step = 2.5e-4});
   const VectorXd E = r.kinetic + r.potential;
   EXPECT_LE((E.array() - E[0]).abs().maxCoeff() / r.kinetic.maxCoeff(), 1e-8);
@@ -156,7 +156,7 @@ TEST(Forward, EnergyIsConserved) {
 
   const Model fb = build_model(mechanisms::fourbar().system);
   const State s2 = consistent_state(fb, {.positions = {}, .velocities = {{"crank.w", 6.0}}});
-  const ForwardResult r2 = forward_dynamics(
+  const Trajectory r2 = forward_dynamics(
       fb, s2, {.t0 = 0, .t1 = 50, .samples = 501, .integrator = Integrator::rk4, .step = 2.5e-4});
   const VectorXd E2 = r2.kinetic + r2.potential;
   EXPECT_LE((E2.array() - E2[0]).abs().maxCoeff() / r2.kinetic.maxCoeff(), 1e-8);
@@ -172,11 +172,11 @@ TEST(Forward, WhitworthInverseForwardRoundTrip) {
   const Model m = build_model(ex.system);
   InverseOptions io = ex.run;
   io.samples = 2;
-  const InverseResult inv = inverse_dynamics(m, ex.motion, io);
+  const Trajectory inv = inverse_dynamics(m, ex.motion, io);
   State s{0, inv.q0.row(0).transpose(), inv.q1.row(0).transpose()};
   ForwardOptions o{.t0 = 0, .t1 = 16, .samples = 161, .integrator = Integrator::rk4, .step = 2e-3};
   o.efforts = efforts_from_inverse(m, ex.motion);
-  const ForwardResult r = forward_dynamics(m, s, o);
+  const Trajectory r = forward_dynamics(m, s, o);
   const int ia = r.column("crank.angle");
   double worst = 0;
   for (int i = 0; i < r.time.size(); ++i)
@@ -186,7 +186,7 @@ TEST(Forward, WhitworthInverseForwardRoundTrip) {
   // trajectories agree to ~1e-9; reactions are O(1) N)
   InverseOptions io2 = ex.run;
   io2.samples = 161;
-  const InverseResult inv2 = inverse_dynamics(m, ex.motion, io2);
+  const Trajectory inv2 = inverse_dynamics(m, ex.motion, io2);
   EXPECT_EQ(r.reaction_labels, inv2.reaction_labels);
   EXPECT_LE((r.reactions - inv2.reactions).cwiseAbs().maxCoeff(),
             1e-6 * inv2.reactions.cwiseAbs().maxCoeff());
@@ -202,11 +202,11 @@ TEST(Forward, FormulationsAgree) {
   const State s = consistent_state(fb, {.positions = {}, .velocities = {{"crank.w", 3.0}}});
   ForwardOptions o{.t0 = 0, .t1 = 1, .samples = 11, .integrator = Integrator::rk4, .step = 1e-3};
   o.formulation = Formulation::augmented_lagrangian;
-  const ForwardResult a = forward_dynamics(fb, s, o);
+  const Trajectory a = forward_dynamics(fb, s, o);
   o.formulation = Formulation::lagrange;
-  const ForwardResult b = forward_dynamics(fb, s, o);
+  const Trajectory b = forward_dynamics(fb, s, o);
   o.formulation = Formulation::null_space;
-  const ForwardResult c = forward_dynamics(fb, s, o);
+  const Trajectory c = forward_dynamics(fb, s, o);
   EXPECT_LE((a.q0 - b.q0).cwiseAbs().maxCoeff(), 1e-11);
   EXPECT_LE((a.q0 - c.q0).cwiseAbs().maxCoeff(), 1e-11);
   EXPECT_LE((a.q1 - c.q1).cwiseAbs().maxCoeff(), 1e-10);
@@ -218,9 +218,9 @@ TEST(Forward, BaumgarteDriftsProjectionDoesNot) {
   const State s = consistent_state(fb, {.positions = {}, .velocities = {{"crank.w", 6.0}}});
   ForwardOptions o{.t0 = 0, .t1 = 5, .samples = 51, .step = 5e-3};
   o.integrator = Integrator::baumgarte;
-  const ForwardResult b = forward_dynamics(fb, s, o);
+  const Trajectory b = forward_dynamics(fb, s, o);
   o.integrator = Integrator::rk4;
-  const ForwardResult p = forward_dynamics(fb, s, o);
+  const Trajectory p = forward_dynamics(fb, s, o);
   EXPECT_LE(p.residuals.col(0).maxCoeff(), 1e-12);
   EXPECT_GT(b.residuals.col(0).maxCoeff(), 1e3 * p.residuals.col(0).maxCoeff());
 }
@@ -237,7 +237,7 @@ TEST(Forward, DoubleFourBarStaysOnThePhysicalBranch) {
     o.t0 = 0;
     o.t1 = 10;
     o.samples = 11;
-    const ForwardResult r = forward_dynamics(m, s, o);
+    const Trajectory r = forward_dynamics(m, s, o);
     const int k = static_cast<int>(r.time.size()) - 1;
     return std::hypot(r.q0(k, ix) - rx, r.q0(k, iy) - ry);
   };
@@ -277,7 +277,7 @@ TEST(Forward, SingularInstantsAreSteppedOver) {
         .integrator = Integrator::dopri5,
         .rtol = 3e-9,
         .atol = 3e-9}}) {
-    const ForwardResult r = forward_dynamics(m, s, o);
+    const Trajectory r = forward_dynamics(m, s, o);
     const int k = static_cast<int>(r.time.size()) - 1;
     // rk4 at 4e-3: 3.3e-7; dopri5: ~370 x tol (3.7e-7 at 1e-9, 1.1e-6 at 3e-9)
     EXPECT_LE(std::hypot(r.q0(k, ix) - 0.328458111541, r.q0(k, iy) - 0.944518538179),
@@ -298,7 +298,7 @@ TEST(Forward, SingularInstantsAreSteppedOver) {
 TEST(Forward, NearSingularOutputTimesAreReported) {
   const Model m = build_model(mechanisms::double_fourbar());
   const State s = consistent_state(m, {.positions = {}, .velocities = {{"crank0.w", -1.0}}});
-  const ForwardResult r = forward_dynamics(
+  const Trajectory r = forward_dynamics(
       m, s, {.t0 = 0, .t1 = 1, .samples = 1001, .integrator = Integrator::rk4, .step = 1e-3});
   // (sigma_min / sigma_max)^2 grows as the square of the distance to the instant: 2.3e-6 at the
   // nearest output time (0.32 ms away); any sample within 0.5 ms is below 1e-5
@@ -307,7 +307,7 @@ TEST(Forward, NearSingularOutputTimesAreReported) {
   EXPECT_NE(r.stats.warnings[0].find("near-singular configuration at t = 0.71"), std::string::npos)
       << r.stats.warnings[0];
   // far from it, nothing is reported
-  const ForwardResult quiet = forward_dynamics(
+  const Trajectory quiet = forward_dynamics(
       m, s, {.t0 = 0, .t1 = 0.5, .samples = 501, .integrator = Integrator::rk4, .step = 1e-3});
   EXPECT_TRUE(quiet.stats.warnings.empty());
   EXPECT_GT(quiet.stats.min_pivot_ratio, 1e-3);
@@ -367,10 +367,10 @@ TEST(Forward, BadInputIsRefused) {
 
 TEST(Forward, CsvHasLabelledHeader) {
   const Pendulum p = released_pendulum(0.5);
-  const ForwardResult r = forward_dynamics(
+  const Trajectory r = forward_dynamics(
       p.model, p.start,
       {.t0 = 0, .t1 = 0.1, .samples = 3, .integrator = Integrator::rk4, .step = 1e-3});
-  const std::string csv = forward_csv(r);
+  const std::string csv = trajectory_csv(r);
   const std::string header = csv.substr(0, csv.find('\n'));
   EXPECT_EQ(header.find("t,link.P.x,link.P.y,link.angle,link.P.vx"), 0u) << header;
   EXPECT_NE(header.find("energy.kinetic,energy.potential,work.inputs,energy.dissipated"),
@@ -381,7 +381,7 @@ TEST(Forward, CsvHasLabelledHeader) {
 // Result lookups by label name the unknown label and suggest the closest one.
 TEST(Forward, UnknownLabelsGetASuggestion) {
   const Pendulum p = released_pendulum(0.5);
-  const ForwardResult r = forward_dynamics(
+  const Trajectory r = forward_dynamics(
       p.model, p.start, {.t0 = 0, .t1 = 0.01, .samples = 2, .integrator = Integrator::rk4});
   auto message = [](auto&& f) {
     try {
@@ -396,8 +396,8 @@ TEST(Forward, UnknownLabelsGetASuggestion) {
   EXPECT_EQ(message([&] { r.rate_column("link.ww"); }),
             "unknown quasi-velocity 'link.ww' (did you mean 'link.w'?)");
   const auto ex = mechanisms::pendulum();
-  const InverseResult inv =
+  const Trajectory inv =
       inverse_dynamics(build_model(ex.system), ex.motion, {.t0 = 0, .t1 = 0.1, .samples = 2});
-  EXPECT_EQ(message([&] { inv.input("pivot.torqe"); }),
+  EXPECT_EQ(message([&] { inv.effort("pivot.torqe"); }),
             "unknown input 'pivot.torqe' (did you mean 'pivot.torque'?)");
 }

@@ -70,7 +70,7 @@ RingDisc ring_and_disc(double theta0) {
 }
 
 // theta from the centres: p2 - p1 = (r1 - r2) (sin(xi - theta), -cos(xi - theta))
-double theta_of(const Model& m, const ForwardResult& r, int i) {
+double theta_of(const Model& m, const Trajectory& r, int i) {
   const double dx = r.q0(i, m.coordinate("disc.C.x")) - r.q0(i, m.coordinate("ring.C.x"));
   const double dy = r.q0(i, m.coordinate("disc.C.y")) - r.q0(i, m.coordinate("ring.C.y"));
   return xi - std::atan2(dx, -dy);
@@ -93,7 +93,7 @@ TEST(RingDisc, ModelHasTwoDegreesOfFreedom) {
 // at 2 g sin(theta_bar) / (2 cos(theta_bar - xi) + 1).
 TEST(RingDisc, SteadyRelativeAngle) {
   const RingDisc rd = ring_and_disc(theta_bar);
-  const ForwardResult r = forward_dynamics(
+  const Trajectory r = forward_dynamics(
       rd.model, rd.start,
       {.t0 = 0, .t1 = 2, .samples = 21, .integrator = Integrator::rk4, .step = 1e-3});
   const double accel = 2 * g * std::sin(theta_bar) / (2 * std::cos(theta_bar - xi) + 1);
@@ -119,7 +119,7 @@ TEST(RingDisc, SmallOscillationFrequencyOfTheLinearizedModel) {
   const double delta = 1e-3;
   const RingDisc rd = ring_and_disc(theta_bar + delta);
   const int n = 2001;
-  const ForwardResult r = forward_dynamics(
+  const Trajectory r = forward_dynamics(
       rd.model, rd.start,
       {.t0 = 0, .t1 = 2.2 * period, .samples = n, .integrator = Integrator::rk4, .step = 5e-4});
   // period from the two downward crossings of theta - theta_bar (linear interpolation)

@@ -26,6 +26,8 @@
 #include <cstdlib>
 #include <new>
 
+#include "mo2d/forward.hpp"
+#include "mo2d/forward_data.hpp"
 #include "mo2d/inverse.hpp"
 #include "mo2d/mechanisms.hpp"
 #include "mo2d/model.hpp"
@@ -319,6 +321,38 @@ TEST(NoAllocation, Rrr3Sample) {
 TEST(NoAllocation, Rrr3SceneSample) {
   const mo2d::Scene s = mo2d::load_scene(std::string(MO2D_MECHANISMS_DIR) + "/rrr3.yaml");
   expect_no_allocation({s.system, s.motion, mo2d::inverse_options(s)});
+}
+
+// One evaluation of forward dynamics on its public workspace (forward_accelerations, the
+// integrators' right-hand side) allocates nothing once the workspace is built and a first
+// evaluation has sized the factorizations: the double four-bar (M positive definite: the Schur
+// solve) and the pendulum (M singular: the KKT solve).
+TEST(NoAllocation, ForwardAccelerations) {
+  auto expect_none = [](const mo2d::Model& model, const mo2d::State& s, const char* name) {
+    mo2d::ForwardData data(model);
+    const Eigen::VectorXd u = Eigen::VectorXd::Constant(model.n_inputs(), 0.5);
+    mo2d::forward_accelerations(model, data, 0.0, s.q0, s.q1, u);
+    Counts c;
+    {
+      CountAllocations scope;
+      for (int k = 0; k < 100; ++k)
+        mo2d::forward_accelerations(model, data, 1e-3 * k, s.q0, s.q1, u);
+      c = scope.stop();
+    }
+    EXPECT_EQ(c.news, 0) << "operator new calls in 100 evaluations, " << name;
+    EXPECT_EQ(c.mallocs, 0) << "malloc/calloc/realloc calls in 100 evaluations, " << name;
+    if (c.news != 0 || c.mallocs != 0) print_traces();
+    EXPECT_TRUE(data.a.allFinite());
+  };
+  const mo2d::Model fourbars = mo2d::build_model(mo2d::mechanisms::double_fourbar());
+  expect_none(
+      fourbars,
+      mo2d::consistent_state(fourbars, {.positions = {}, .velocities = {{"crank0.w", -1.0}}}),
+      "double four-bar");
+  const mo2d::Model pendulum = mo2d::build_model(mo2d::mechanisms::pendulum().system);
+  expect_none(pendulum,
+              mo2d::consistent_state(pendulum, {.positions = {}, .velocities = {{"link.w", 0.5}}}),
+              "pendulum");
 }
 
 }  // namespace

@@ -273,9 +273,9 @@ TEST(Errors, ResultLookupOfAnUnknownLabel) {
   InverseOptions run = ex.run;
   run.samples = 3;
   const Model m = build_model(ex.system);
-  const InverseResult r = inverse_dynamics(m, ex.motion, run);
+  const Trajectory r = inverse_dynamics(m, ex.motion, run);
   EXPECT_TRUE(ThrowsError([&] { (void)r.column("link.Q.x"); }, {"link.Q.x"}));
-  EXPECT_TRUE(ThrowsError([&] { (void)r.input("pivot.force"); }, {"pivot.force"}));
+  EXPECT_TRUE(ThrowsError([&] { (void)r.effort("pivot.force"); }, {"pivot.force"}));
   EXPECT_TRUE(ThrowsError([&] { (void)r.reaction("pivot.Fz"); }, {"pivot.Fz"}));
   EXPECT_TRUE(ThrowsError([&] { (void)m.rate("link.P.vz"); }, {"link.P.vz", "did you mean"}));
 }

@@ -27,7 +27,7 @@ struct Drive {
 
 // Input power against the rate of kinetic + potential energy, with the inertial parameters and
 // gravity of the definitions `s` (independent of how build_model compiled them).
-double worst_power_balance(const System& s, const Model& m, const InverseResult& r,
+double worst_power_balance(const System& s, const Model& m, const Trajectory& r,
                            const std::vector<Drive>& drives) {
   const auto par = mo2d::test::params_of(s);
   double peak = 0, worst = 0;
@@ -35,7 +35,7 @@ double worst_power_balance(const System& s, const Model& m, const InverseResult&
   for (int i = 0; i < r.time.size(); ++i) {
     double p = 0;
     for (const auto& d : drives)
-      p += r.efforts(i, r.input(d.input)) * body_motion(m, r, i, body_index(m, d.body)).w;
+      p += r.efforts(i, r.effort(d.input)) * body_motion(m, r, i, body_index(m, d.body)).w;
     pin[i] = p;
     de[i] = energy_rate(m, r, i, par, s.gravity());
     peak = std::max(peak, std::abs(p));
@@ -49,7 +49,7 @@ double worst_power_balance(const System& s, const Model& m, const InverseResult&
 TEST(Validation, WhitworthPowerBalance) {
   auto ex = mechanisms::whitworth();
   const Model m = build_model(ex.system);
-  const InverseResult r = inverse_dynamics(m, ex.motion, ex.run);
+  const Trajectory r = inverse_dynamics(m, ex.motion, ex.run);
   const double err = worst_power_balance(ex.system, m, r, {{"crank_pivot.torque", "crank"}});
   RecordProperty("worst_relative_power_error", std::to_string(err));
   EXPECT_LE(err, 1e-6);
@@ -58,7 +58,7 @@ TEST(Validation, WhitworthPowerBalance) {
 TEST(Validation, Rrr3PowerBalance) {
   auto ex = mechanisms::rrr3();
   const Model m = build_model(ex.system);
-  const InverseResult r = inverse_dynamics(m, ex.motion, ex.run);
+  const Trajectory r = inverse_dynamics(m, ex.motion, ex.run);
   const double err = worst_power_balance(ex.system, m, r,
                                          {{"leg1.pivot.torque", "leg1.proximal"},
                                           {"leg2.pivot.torque", "leg2.proximal"},
@@ -69,14 +69,14 @@ TEST(Validation, Rrr3PowerBalance) {
 TEST(Validation, FourbarUnderGravityPowerBalance) {
   auto ex = mechanisms::fourbar();
   const Model m = build_model(ex.system);
-  const InverseResult r = inverse_dynamics(m, ex.motion, ex.run);
+  const Trajectory r = inverse_dynamics(m, ex.motion, ex.run);
   EXPECT_LE(worst_power_balance(ex.system, m, r, {{"crank_pivot.torque", "crank"}}), 1e-6);
 }
 
 TEST(Validation, SliderCrankPowerBalance) {
   auto ex = mechanisms::slider_crank();
   const Model m = build_model(ex.system);
-  const InverseResult r = inverse_dynamics(m, ex.motion, ex.run);
+  const Trajectory r = inverse_dynamics(m, ex.motion, ex.run);
   EXPECT_LE(worst_power_balance(ex.system, m, r, {{"crank_pivot.torque", "crank"}}), 1e-6);
 }
 
@@ -88,7 +88,7 @@ TEST(Validation, PowerBalanceDetectsWrongModel) {
     auto ex = mechanisms::whitworth();
     mutate(ex.system);
     const Model m = build_model(ex.system);
-    const InverseResult r = inverse_dynamics(m, ex.motion, ex.run);
+    const Trajectory r = inverse_dynamics(m, ex.motion, ex.run);
     // energy from the true parameters, efforts from the mutated model
     return worst_power_balance(base.system, truth, r, {{"crank_pivot.torque", "crank"}});
   };
@@ -121,8 +121,8 @@ void expect_lagrange_agrees(mechanisms::Example ex, double tol) {
   const Model flat = build_model(ex.system);
   const Model none = build_model(ex.system, {.reduction = Reduction::none});
   ASSERT_EQ(none.dof, flat.dof);
-  const InverseResult a = inverse_dynamics(flat, ex.motion, ex.run);
-  const InverseResult b = inverse_dynamics_lagrange(none, ex.motion, ex.run);
+  const Trajectory a = inverse_dynamics(flat, ex.motion, ex.run);
+  const Trajectory b = inverse_dynamics_lagrange(none, ex.motion, ex.run);
   ASSERT_EQ(a.reaction_labels, b.reaction_labels);
   ASSERT_EQ(a.input_labels, b.input_labels);
   EXPECT_LE(max_relative_difference(a.efforts, b.efforts), tol);
@@ -159,7 +159,7 @@ TEST(Validation, PendulumClosedForm) {
     p.theta0 = theta0;
     auto ex = mechanisms::pendulum(p);
     const Model m = build_model(ex.system);
-    const InverseResult r = inverse_dynamics(m, ex.motion, ex.run);
+    const Trajectory r = inverse_dynamics(m, ex.motion, ex.run);
     double worst_tau = 0, worst_f = 0;
     for (int i = 0; i < r.time.size(); ++i) {
       const Jet th = ex.motion[0].motion(Jet(r.time[i], 1, 0));
@@ -186,7 +186,7 @@ TEST(Validation, SliderCrankMasslessRodClosedForm) {
   p.gravity = 9.81;
   auto ex = mechanisms::slider_crank(p);
   const Model m = build_model(ex.system);
-  const InverseResult r = inverse_dynamics(m, ex.motion, ex.run);
+  const Trajectory r = inverse_dynamics(m, ex.motion, ex.run);
   double worst_tau = 0, worst_n = 0, peak = 0;
   for (int i = 0; i < r.time.size(); ++i) {
     const Jet th = ex.motion[0].motion(Jet(r.time[i], 1, 0));
@@ -215,9 +215,9 @@ TEST(Validation, Rrr3FlattenedAndRecursiveAgree) {
   EXPECT_EQ(tree.dof, 3);
   EXPECT_LT(flat.n1, tree.n1);  // the attach joints are rows in the tree model
   InverseOptions o = ex.run;
-  const InverseResult a = inverse_dynamics(flat, ex.motion, o);
+  const Trajectory a = inverse_dynamics(flat, ex.motion, o);
   o.complement = ComplementMethod::recursive;
-  const InverseResult b = inverse_dynamics(tree, ex.motion, o);
+  const Trajectory b = inverse_dynamics(tree, ex.motion, o);
   ASSERT_EQ(a.reaction_labels, b.reaction_labels);
   EXPECT_LE(max_relative_difference(a.efforts, b.efforts), 1e-11);
   EXPECT_LE(max_relative_difference(a.reactions, b.reactions), 1e-11);
@@ -249,7 +249,7 @@ TEST(Validation, RecursiveComplementSpansNullSpace) {
 // position error d (Newton, ~1e-14 m) enters the second derivative as 64 d / (12 h^2) (~1e-7).
 namespace {
 struct Stencil {
-  InverseResult r;
+  Trajectory r;
   double h;
   double d1(const Eigen::VectorXd& f) const {
     return (-f[4] + 8 * f[3] - 8 * f[1] + f[0]) / (12 * h);
@@ -296,7 +296,7 @@ void expect_kinematics_match_differences(const mechanisms::Example& ex,
     for (int i = 0; i < 5; ++i) e[i] = mo2d::test::energy(m, s.r, i);
     double pin = 0;
     for (const auto& d : drives)
-      pin += s.r.efforts(2, s.r.input(d.input)) * body_motion(m, s.r, 2, body_index(m, d.body)).w;
+      pin += s.r.efforts(2, s.r.effort(d.input)) * body_motion(m, s.r, 2, body_index(m, d.body)).w;
     worst_p = std::max(worst_p, std::abs(s.d1(e) - pin));
     pscale = std::max(pscale, std::abs(pin));
     (void)par;

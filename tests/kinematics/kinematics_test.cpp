@@ -45,7 +45,7 @@ TEST(Kinematics, VelocitySolutionKeepsPositionConstraintsStationary) {
   const Model m = build_model(ex.system);
   InverseOptions o = ex.run;
   o.samples = 17;
-  const InverseResult r = inverse_dynamics(m, ex.motion, o);
+  const Trajectory r = inverse_dynamics(m, ex.motion, o);
   for (int i = 0; i < r.time.size(); ++i) {
     VectorXd psi(m.m0);
     MatrixXd J(m.m0, m.n0);

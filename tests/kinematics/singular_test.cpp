@@ -121,7 +121,7 @@ TEST(Singular, ScaledFourbarHasNoFalseAlarms) {
     ForwardOptions o{.t0 = 0, .t1 = 2, .samples = 201, .integrator = Integrator::dopri5};
     o.rtol = 1e-8;
     o.atol = 1e-8 * L;
-    const ForwardResult r = forward_dynamics(m, s, o);
+    const Trajectory r = forward_dynamics(m, s, o);
     EXPECT_TRUE(r.stats.warnings.empty()) << "L = " << L << "\n" << joined(r.stats.warnings);
     EXPECT_EQ(r.stats.regularized_evaluations, 0) << "L = " << L;
     const double e0 = r.kinetic[0] + r.potential[0];
@@ -149,7 +149,7 @@ TEST(Singular, ScaledDoubleFourbarPassesItsSingularPositionsAlike) {
     {
       const ForwardOptions o{
           .t0 = 0, .t1 = 10, .samples = 1001, .integrator = Integrator::rk4, .step = 4e-3};
-      const ForwardResult r = forward_dynamics(m, s, o);
+      const Trajectory r = forward_dynamics(m, s, o);
       const int k = static_cast<int>(r.time.size()) - 1;
       // reference end point of the tip of crank0 (Forward.SingularInstantsAreSteppedOver), in L
       const double err =
@@ -189,7 +189,7 @@ TEST(Singular, UnprojectedIntegratorStopsAtSingularConfiguration) {
   }
   const Model fb = build_model(fourbar(0.1, 0.35, 0.3, 0.4, 1, 1, false));
   const State s2 = consistent_state(fb, {.positions = {}, .velocities = {{"crank.w", 6.0}}});
-  const ForwardResult r = forward_dynamics(
+  const Trajectory r = forward_dynamics(
       fb, s2, {.t0 = 0, .t1 = 2, .samples = 201, .integrator = Integrator::cvode_adams});
   EXPECT_LT(r.stats.max_drift, 1e-6);
   EXPECT_TRUE(r.stats.warnings.empty()) << joined(r.stats.warnings);
@@ -209,18 +209,19 @@ TEST(Singular, InverseReportsChangePointPassage) {
   };
   for (double L : {1.0, 0.01, 100.0}) {
     // 401 samples: one on the flat position (t = 0.25 s and 1.25 s)
-    const InverseResult on = run(L, 401, true);
-    const std::string w = joined(on.warnings);
-    EXPECT_EQ(count(on.warnings, "near-singular configuration at t = 0.25 s"), 1) << w;
-    EXPECT_EQ(count(on.warnings, "near-singular configuration at t = 1.25 s"), 1) << w;
+    const Trajectory on = run(L, 401, true);
+    const std::string w = joined(on.stats.warnings);
+    EXPECT_EQ(count(on.stats.warnings, "near-singular configuration at t = 0.25 s"), 1) << w;
+    EXPECT_EQ(count(on.stats.warnings, "near-singular configuration at t = 1.25 s"), 1) << w;
     EXPECT_NE(w.find("crank.angle = 3.14159"), std::string::npos) << w;
     EXPECT_NE(w.find("rocker.w"), std::string::npos) << w;
     // 400 samples: none on it; the passage is still reported, between the samples around it
-    const InverseResult off = run(L, 400, true);
-    EXPECT_GE(count(off.warnings, "between t = 0.2"), 1) << joined(off.warnings);
-    EXPECT_GE(count(off.warnings, "between t = 1.2"), 1) << joined(off.warnings);
+    const Trajectory off = run(L, 400, true);
+    EXPECT_GE(count(off.stats.warnings, "between t = 0.2"), 1) << joined(off.stats.warnings);
+    EXPECT_GE(count(off.stats.warnings, "between t = 1.2"), 1) << joined(off.stats.warnings);
     // the crank-rocker: nothing to report
-    EXPECT_TRUE(run(L, 401, false).warnings.empty()) << joined(run(L, 401, false).warnings);
+    EXPECT_TRUE(run(L, 401, false).stats.warnings.empty())
+        << joined(run(L, 401, false).stats.warnings);
   }
 }
 

@@ -849,7 +849,7 @@ Mechanism generate(std::uint64_t seed, GeneratorStats& stats, const GeneratorOpt
         reason = "generator: DOF differs from the prescribed coordinates";
       } else {
         const auto p = prescribed(m);
-        const InverseResult r =
+        const Trajectory r =
             inverse_dynamics(model, p, {.t0 = 0, .t1 = m.t1, .samples = o.samples});
         std::vector<std::string> labels;
         for (const auto& ms : m.motion) labels.push_back(ms.coordinate);

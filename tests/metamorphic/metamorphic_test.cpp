@@ -50,7 +50,6 @@
 #include "mo2d/error.hpp"
 #include "mo2d/forward.hpp"
 #include "mo2d/inverse.hpp"
-#include "mo2d/lagrange.hpp"
 #include "mo2d/mo2d.hpp"
 
 using namespace mo2d;
@@ -377,7 +376,7 @@ Obs inverse_obs(const Mechanism& m, Reduction reduction = Reduction::flat,
   InverseOptions o = run_options(m);
   o.complement = complement;
   const auto p = prescribed(m);
-  const InverseResult r =
+  const Trajectory r =
       lagrange ? inverse_dynamics_lagrange(model, p, o) : inverse_dynamics(model, p, o);
   return observe(model, flatten(m), r);
 }
@@ -467,8 +466,8 @@ void check_mechanism(const Mechanism& mech, Table& table) {
   const Model model = build_model(sys);
   const Flat flat = flatten(mech);
   const auto motion = prescribed(mech);
-  const InverseResult base = inverse_dynamics(model, motion, run_options(mech));
-  table.inverse_warning = base.warnings.empty() ? "" : base.warnings.front();
+  const Trajectory base = inverse_dynamics(model, motion, run_options(mech));
+  table.inverse_warning = base.stats.warnings.empty() ? "" : base.stats.warnings.front();
   std::vector<Energy> energies;
   const Obs o = observe(model, flat, base, &energies);
   const double L = mech.length;
@@ -477,7 +476,8 @@ void check_mechanism(const Mechanism& mech, Table& table) {
   if (verbose) {
     std::printf("mechanism %llu [%s]\n", static_cast<unsigned long long>(mech.seed),
                 mech.family.c_str());
-    for (const std::string& w : base.warnings) std::printf("  inverse warning: %s\n", w.c_str());
+    for (const std::string& w : base.stats.warnings)
+      std::printf("  inverse warning: %s\n", w.c_str());
   }
   auto relation = [&](const std::string& name, double tol, auto&& run) {
     const auto t0 = std::chrono::steady_clock::now();
@@ -555,7 +555,7 @@ void check_mechanism(const Mechanism& mech, Table& table) {
   };
   double amplification = INFINITY;
   try {
-    const ForwardResult a = replay(1e-7, 1.0, 20000), b = replay(1e-7, 1.0 + 1e-6, 20000);
+    const Trajectory a = replay(1e-7, 1.0, 20000), b = replay(1e-7, 1.0 + 1e-6, 20000);
     // positions and velocities: the relation compares both (velocities amplify more on some
     // mechanisms: seed 124, positions 1e2, velocities 2e5 x rtol)
     const auto ob = observe(model, flat, b), oa = observe(model, flat, a);
@@ -577,7 +577,7 @@ void check_mechanism(const Mechanism& mech, Table& table) {
   // counted. dopri5 at rtol 1e-10 stalls on some mechanisms (seed 15: more than 200000 steps
   // where BDF needs 315; docs/testing.md).
   const bool resolvable = amplification <= 1e2;
-  ForwardResult fr;
+  Trajectory fr;
   bool forward_ok = false;
   std::string forward_error;
   try {
@@ -765,18 +765,17 @@ TEST(Metamorphic, InverseBranchJumpBetweenSamplesIsReported) {
   const Mechanism mech = generate(184, stats);
   const Model model = build_model(to_system(mech));
   const auto motion = prescribed(mech);
-  const InverseResult coarse =
+  const Trajectory coarse =
       inverse_dynamics(model, motion, {.t0 = 0, .t1 = mech.t1, .samples = 21});
-  const InverseResult fine =
-      inverse_dynamics(model, motion, {.t0 = 0, .t1 = mech.t1, .samples = 201});
+  const Trajectory fine = inverse_dynamics(model, motion, {.t0 = 0, .t1 = mech.t1, .samples = 201});
   const int c = model.coordinate("b17.P.x");
   bool jumped = false;
   for (int i = 0; i < 21; ++i)
     jumped |= std::abs(coarse.q0(i, c) - fine.q0(10 * i, c)) > 1e-9 * mech.length;
   ASSERT_TRUE(jumped) << "the coarse run kept its branch: turn this into a branch-keeping test";
   bool reported = false;
-  for (const std::string& w : coarse.warnings)
+  for (const std::string& w : coarse.stats.warnings)
     reported |= w.find("the positions jumped between t = 0 s") != std::string::npos;
   EXPECT_TRUE(reported) << "the branch jump of seed 184 is not reported";
-  EXPECT_TRUE(fine.warnings.empty()) << fine.warnings.front();
+  EXPECT_TRUE(fine.stats.warnings.empty()) << fine.stats.warnings.front();
 }

@@ -198,15 +198,15 @@ TEST(Joints, PrescribedCouplerAngleGivesTheCrankDrivenTorque) {
   EXPECT_NEAR(c0, body_angle(m.bodies[1], m.q0), 1e-15);
   const std::vector<Prescribed> coupler{
       {"coupler.angle", [c0](Jet t) { return Jet(c0) + 0.03 * sin(2.0 * t); }}};
-  const InverseResult r = inverse_dynamics(m, coupler, {.t0 = 0, .t1 = 1, .samples = 11});
-  const int ic = r.column("crank.angle"), u = r.input("pivot.torque");
+  const Trajectory r = inverse_dynamics(m, coupler, {.t0 = 0, .t1 = 1, .samples = 11});
+  const int ic = r.column("crank.angle"), u = r.effort("pivot.torque");
   for (int i = 0; i < r.time.size(); ++i) {
     const double ti = r.time[i], phi = r.q0(i, ic), w = r.q1(i, ic), al = r.a1(i, ic);
     const std::vector<Prescribed> crank{{"crank.angle", [=](Jet t) {
                                            const Jet h = t - ti;
                                            return Jet(phi) + w * h + 0.5 * al * h * h;
                                          }}};
-    const InverseResult rc = inverse_dynamics(m, crank, {.t0 = ti, .t1 = ti, .samples = 1});
+    const Trajectory rc = inverse_dynamics(m, crank, {.t0 = ti, .t1 = ti, .samples = 1});
     EXPECT_NEAR(rc.efforts(0, 0), r.efforts(i, u), 1e-9 * (1 + std::abs(r.efforts(i, u))))
         << "t = " << ti;
     EXPECT_NEAR(rc.q0(0, r.column("coupler.angle")), r.q0(i, r.column("coupler.angle")), 1e-12);

@@ -15,16 +15,16 @@ TEST(Output, CsvHasLabelledHeaderAndIsWrittenAtomically) {
   const Model m = build_model(ex.system);
   InverseOptions o = ex.run;
   o.samples = 5;
-  const InverseResult r = inverse_dynamics(m, ex.motion, o);
-  const std::string csv = inverse_csv(r);
+  const Trajectory r = inverse_dynamics(m, ex.motion, o);
+  const std::string csv = trajectory_csv(r);
   EXPECT_EQ(csv.substr(0, csv.find('\n')).find("t,link.P.x,link.P.y,link.angle"), 0u);
   EXPECT_NE(csv.find("pivot.torque"), std::string::npos);
   EXPECT_NE(csv.find("pivot.Fx"), std::string::npos);
   EXPECT_EQ(std::count(csv.begin(), csv.end(), '\n'), 6);
   const std::string path = ::testing::TempDir() + "/mo2d_csv_test.csv";
-  write_inverse_csv(r, path);
+  write_trajectory_csv(r, path);
   std::FILE* f = std::fopen(path.c_str(), "rb");
   ASSERT_NE(f, nullptr);
   std::fclose(f);
-  EXPECT_THROW(write_inverse_csv(r, "/nonexistent-dir/x.csv"), Error);
+  EXPECT_THROW(write_trajectory_csv(r, "/nonexistent-dir/x.csv"), Error);
 }

@@ -110,7 +110,7 @@ TEST(Render, FittedViewKeepsEveryJointOfTheWhitworthRunInside) {
   const Model m = build_model(ex.system);
   InverseOptions run = ex.run;
   run.samples = 41;
-  const InverseResult r = inverse_dynamics(m, ex.motion, run);
+  const Trajectory r = inverse_dynamics(m, ex.motion, run);
   FrameOptions o;
   o.show_com = o.show_efforts = false;
   o.style.joint_fill = rgb_hex(kMagenta);
@@ -325,7 +325,7 @@ TEST(Render, InverseRunWritesFramesFilmstripAndPlots) {
   const Model m = build_model(ex.system);
   InverseOptions run = ex.run;
   run.samples = 51;
-  const InverseResult r = inverse_dynamics(m, ex.motion, run);
+  const Trajectory r = inverse_dynamics(m, ex.motion, run);
   const fs::path d = scratch_dir("run");
   RenderJob job;
   job.dir = (d / "out").string();
@@ -337,7 +337,7 @@ TEST(Render, InverseRunWritesFramesFilmstripAndPlots) {
   job.filmstrip_options.frames = 4;
   job.filmstrip_options.tile.width = 160;
   job.filmstrip_options.tile.height = 120;
-  const RenderOutputs out = render_inverse_run(m, r, job);
+  const RenderOutputs out = render_run(m, r, job);
   ASSERT_EQ(out.frames.size(), 6u);  // samples 0, 10, ..., 50
   EXPECT_EQ(fs::path(out.frames[0]).filename(), "whitworth_0001.png");
   EXPECT_EQ(fs::path(out.frames[5]).filename(), "whitworth_0006.png");
@@ -363,14 +363,14 @@ TEST(Render, ForwardRunWritesFilmstripAndPlots) {
   ForwardOptions o;
   o.t1 = 1;
   o.samples = 21;
-  const ForwardResult r = forward_dynamics(m, start, o);
+  const Trajectory r = forward_dynamics(m, start, o);
   const fs::path d = scratch_dir("forward");
   RenderJob job;
   job.dir = d.string();
   job.name = "pendulum";
   job.format = "svg";
   job.filmstrip_options.tile.traces = {"link.P"};
-  const RenderOutputs out = render_forward_run(m, r, job);
+  const RenderOutputs out = render_run(m, r, job);
   EXPECT_TRUE(out.frames.empty());
   EXPECT_EQ(fs::path(out.filmstrip).filename(), "pendulum_filmstrip.svg");
   ASSERT_EQ(out.plots.size(), 2u);

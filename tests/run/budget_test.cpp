@@ -15,6 +15,7 @@
 
 #include "mo2d/mo2d.hpp"
 #include "mo2d/scene.hpp"
+#include "output/write_file.hpp"
 
 namespace mo2d {
 namespace {
@@ -97,7 +98,7 @@ TEST(RunGuards, FixedStepWithinTheBudgetRuns) {
 loads: {gravity: [0, -g]}
 run: {solve: forward, duration: 0.1, samples: 11, integrator: rk4, step: 1e-5}
 )"));
-  const ForwardResult f =
+  const Trajectory f =
       forward_dynamics(r.model, initial_state(r.scene, r.model), forward_options(r.scene, r.model));
   EXPECT_EQ(f.stats.steps, 10000);
 }
@@ -133,7 +134,7 @@ TEST(RunGuards, TimeGridBelowTheResolutionIsRefused) {
   // a resolvable offset runs, and its samples are distinct and equally spaced
   io.t0 = 1e6;
   io.t1 = 1e6 + 2;
-  const InverseResult res = inverse_dynamics(r.model, r.scene.motion, io);
+  const Trajectory res = inverse_dynamics(r.model, r.scene.motion, io);
   for (int k = 1; k < res.time.size(); ++k) EXPECT_NEAR(res.time[k] - res.time[k - 1], 0.01, 1e-9);
 }
 
@@ -187,7 +188,7 @@ TEST(RunGuards, NonFiniteForwardResultIsAnError) {
     ForwardOptions o = forward_options(r.scene, r.model);
     o.integrator = i;
     try {
-      const ForwardResult f = forward_dynamics(r.model, s0, o);
+      const Trajectory f = forward_dynamics(r.model, s0, o);
       FAIL() << to_string(i) << ": no error, t_end " << f.stats.t_end << ", last link.w "
              << f.q1(f.q1.rows() - 1, 0);
     } catch (const Error& e) {
@@ -204,10 +205,10 @@ TEST(RunGuards, CsvRefusesNonFiniteValues) {
   const Loaded r = load(pendulum_scene("1", std::string(kSwing) + "loads: {gravity: [0, -g]}\n"));
   InverseOptions io = inverse_options(r.scene);
   io.samples = 5;
-  InverseResult res = inverse_dynamics(r.model, r.scene.motion, io);
-  EXPECT_NO_THROW(inverse_csv(res));
+  Trajectory res = inverse_dynamics(r.model, r.scene.motion, io);
+  EXPECT_NO_THROW(trajectory_csv(res));
   res.efforts(3, 0) = NAN;
-  const std::string msg = error_of([&] { inverse_csv(res); });
+  const std::string msg = error_of([&] { trajectory_csv(res); });
   EXPECT_NE(msg.find("'pivot.torque' is not finite"), std::string::npos) << msg;
 }
 

@@ -7,6 +7,8 @@
 #include <cmath>
 #include <numbers>
 
+#include "model/suggest.hpp"
+
 namespace mo2d {
 namespace {
 

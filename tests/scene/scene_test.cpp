@@ -66,8 +66,8 @@ void expect_same_inverse(const std::string& name, const mechanisms::Example& ex)
   for (size_t k = 0; k < ex.motion.size(); ++k)
     EXPECT_EQ(scene.motion[k].coordinate, ex.motion[k].coordinate);
 
-  const InverseResult a = inverse_dynamics(from_scene, scene.motion, o);
-  const InverseResult b = inverse_dynamics(from_cpp, ex.motion, o);
+  const Trajectory a = inverse_dynamics(from_scene, scene.motion, o);
+  const Trajectory b = inverse_dynamics(from_cpp, ex.motion, o);
   const double effort_scale = 1 + b.efforts.cwiseAbs().maxCoeff();
   const double reaction_scale = 1 + b.reactions.cwiseAbs().maxCoeff();
   EXPECT_LE(max_abs_diff(a.q0, b.q0), kSame);
@@ -106,8 +106,8 @@ TEST(Scene, DoubleFourbarForwardMatchesCpp) {
       consistent_state(from_cpp, {.positions = {}, .velocities = {{"crank0.w", -1.0}}});
   EXPECT_LE(max_abs_diff(s_scene.q0, s_cpp.q0), kSame);
   EXPECT_LE(max_abs_diff(s_scene.q1, s_cpp.q1), kSame);
-  const ForwardResult a = forward_dynamics(from_scene, s_scene, o);
-  const ForwardResult b = forward_dynamics(from_cpp, s_cpp, o);
+  const Trajectory a = forward_dynamics(from_scene, s_scene, o);
+  const Trajectory b = forward_dynamics(from_cpp, s_cpp, o);
   EXPECT_LE(max_abs_diff(a.q0, b.q0), kSame);
   EXPECT_LE(max_abs_diff(a.q1, b.q1), kSame);
 }
@@ -160,7 +160,7 @@ run: {solve: forward, duration: 0.1, samples: 3}
   const Scene s = parse_scene(text, "bead.yaml");
   const Model m = build_scene_model(s);
   EXPECT_EQ(m.dof, 1);
-  const ForwardResult r = forward_dynamics(m, initial_state(s, m), forward_options(s, m));
+  const Trajectory r = forward_dynamics(m, initial_state(s, m), forward_options(s, m));
   EXPECT_LE(r.residuals.col(0).maxCoeff(), 1e-8);
 }
 
@@ -236,8 +236,8 @@ run: {duration: 1, samples: 51}
   expect_same_model(a, b);
   EXPECT_EQ(a.dof, 1);
   const InverseOptions o = inverse_options(scene);
-  const InverseResult ra = inverse_dynamics(a, scene.motion, o);
-  const InverseResult rb = inverse_dynamics(b, motion, o);
+  const Trajectory ra = inverse_dynamics(a, scene.motion, o);
+  const Trajectory rb = inverse_dynamics(b, motion, o);
   EXPECT_LE(max_abs_diff(ra.q0, rb.q0), kSame);
   EXPECT_LE(max_abs_diff(ra.efforts, rb.efforts), kSame * (1 + rb.efforts.cwiseAbs().maxCoeff()));
   EXPECT_LE(max_abs_diff(ra.reactions, rb.reactions),

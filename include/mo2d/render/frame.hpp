@@ -19,10 +19,9 @@
 #include <string>
 #include <vector>
 
-#include "mo2d/forward.hpp"
-#include "mo2d/inverse.hpp"
 #include "mo2d/model.hpp"
 #include "mo2d/render/image.hpp"
+#include "mo2d/trajectory.hpp"
 
 namespace mo2d {
 
@@ -32,8 +31,7 @@ struct Motion {
   Eigen::MatrixXd q0{};       // samples x Model::n0
   Eigen::MatrixXd efforts{};  // samples x Model::n_inputs(), or 0 columns (no effort symbols)
 };
-Motion motion_of(const InverseResult& r);
-Motion motion_of(const ForwardResult& r);
+Motion motion_of(const Trajectory& r);
 // One configuration (e.g. Model::q0) at time t, without efforts.
 Motion single_configuration(const Eigen::VectorXd& q0, double t = 0);
 

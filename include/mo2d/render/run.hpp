@@ -4,11 +4,10 @@
 #include <string>
 #include <vector>
 
-#include "mo2d/forward.hpp"
-#include "mo2d/inverse.hpp"
 #include "mo2d/model.hpp"
 #include "mo2d/render/frame.hpp"
 #include "mo2d/render/plot.hpp"
+#include "mo2d/trajectory.hpp"
 
 namespace mo2d {
 
@@ -36,22 +35,18 @@ struct RenderOutputs {
   std::vector<std::string> notes{};  // e.g. "ffmpeg not found: no video"
 };
 
-// Inverse dynamics: frames (with the effort symbols), filmstrip, DIR/NAME_efforts.FORMAT (every
-// input against time, torques and forces in their units) and DIR/NAME_residuals.FORMAT (position,
-// velocity and acceleration residuals, log scale). Returns the paths written.
-RenderOutputs render_inverse_run(const Model& model, const InverseResult& result,
-                                 const RenderJob& job);
-// Forward dynamics: frames, filmstrip (traces, if any, show the trajectory),
+// Frames (with the effort symbols of an inverse run), filmstrip (traces, if any, show the
+// trajectory) and plots. An inverse run: DIR/NAME_efforts.FORMAT (every input against time, torques
+// and forces in their units; when the mechanism has inputs) and DIR/NAME_residuals.FORMAT
+// (position, velocity and acceleration residuals, log scale). A forward run:
 // DIR/NAME_energies.FORMAT (kinetic, potential, input work, dissipated, balance) and
-// DIR/NAME_residuals.FORMAT (position and velocity residuals, log scale).
-RenderOutputs render_forward_run(const Model& model, const ForwardResult& result,
-                                 const RenderJob& job);
+// DIR/NAME_residuals.FORMAT (position and velocity residuals). Returns the paths written.
+RenderOutputs render_run(const Model& model, const Trajectory& result, const RenderJob& job);
 
-// The plots on their own (used by the functions above).
-Plot efforts_plot(const InverseResult& result);
-Plot inverse_residuals_plot(const InverseResult& result);
-Plot energies_plot(const ForwardResult& result);
-Plot forward_residuals_plot(const ForwardResult& result);
+// The plots on their own (used by render_run). energies_plot: a forward run (Error otherwise).
+Plot efforts_plot(const Trajectory& result);
+Plot residuals_plot(const Trajectory& result);
+Plot energies_plot(const Trajectory& result);
 
 // An MP4 (H.264) from DIR/NAME_%04d.png with ffmpeg. Returns false (and writes nothing) if
 // ffmpeg is not on PATH; throws Error if ffmpeg fails.

@@ -1,0 +1,59 @@
+#pragma once
+// Internal to the forward-dynamics implementation: what a run needs besides its workspace
+// (ForwardData, mo2d/forward_data.hpp): the energy terms integrated with the state, the output
+// recorder (recorder.cpp), and the integrator drivers (forward_rk.cpp, forward_cvode.cpp).
+#include <string>
+#include <vector>
+
+#include "mo2d/forward.hpp"
+#include "mo2d/forward_data.hpp"
+#include "run/run_budget.hpp"
+
+namespace mo2d::detail {
+
+std::string fmt(double v);  // 6 significant digits, for messages
+
+// y = (J J^T + eps * max(1, max diag(J J^T)) I)^-1 J x: the least-squares multipliers of
+// J^T y = x, regularized where J loses rank (eps relative to the largest diagonal entry).
+VectorXd regularized_normal_solve(const MatrixXd& J, const VectorXd& x, double eps);
+
+// The energy terms integrated along the run, carried as extra states after (q0, q1) under the
+// same error control and stages as the state (so that the balance holds to integration accuracy).
+enum EnergyTerm { kInputWork, kLoadWork, kConstraintWork, kDissipated, kEnergyTerms };
+// Their rates (powers, W) at (t, q0, q1), right after d.accelerations(t, q0, q1, .) there.
+void energy_rates(ForwardData& d, double t, const VectorXd& q0, const VectorXd& q1, double* rates);
+
+struct Recorder {
+  const Model& m;
+  Trajectory& r;
+  ForwardData& d;
+  int k = 0;
+  // a run of output times below o.singular_warning, reported once at its smallest pivot ratio
+  bool near = false;
+  double near_min = 1, near_t = 0, near_first = 0, near_last = 0;
+  std::string near_what{};
+  bool drift_reported = false;
+  // energies: the kEnergyTerms integrated terms at t
+  void record(double t, const VectorXd& q0, const VectorXd& q1, const double* energies);
+  void finish();  // after the last output time: reports what is still open
+ private:
+  void flush_near();
+  void check_unprojected();
+  void check_drift(double t, const VectorXd& q0);
+};
+
+// Throws Error naming the first non-finite value of recorded sample k and its time (forward.cpp).
+void check_finite_sample(const Model& m, const Trajectory& r, int k);
+
+// Integrator drivers: integrate from s0 to o.t1, recording every output time.
+void run_explicit_rk(const Model& m, ForwardData& d, const State& s0, const ForwardOptions& o,
+                     Recorder& rec);
+void run_cvode(const Model& m, ForwardData& d, const State& s0, const ForwardOptions& o,
+               Recorder& rec);
+
+// The budget of a forward run (max_steps, max_seconds, progress monitor) with the hint its
+// error gives besides the budget (integrator, tolerances, step).
+detail::RunBudget::Settings forward_budget(const Model& m, const ForwardOptions& o,
+                                           std::string hint);
+
+}  // namespace mo2d::detail
