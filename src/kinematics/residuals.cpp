@@ -19,8 +19,7 @@ void position_residual(const Model& m, const Eigen::Ref<const VectorXd>& q0, dou
 }
 
 void detail::position_jacobian(const Model& m, const Eigen::Ref<const VectorXd>& q0, double t,
-                               const int* colmap, Eigen::Ref<VectorXd> psi,
-                               Eigen::Ref<MatrixXd> J) {
+                               const int* colmap, VectorXd& psi, MatrixXd& J) {
   J.setZero();
   DenseSink sink{J, colmap};
   for (const auto& c : m.constraints)
@@ -29,7 +28,10 @@ void detail::position_jacobian(const Model& m, const Eigen::Ref<const VectorXd>&
 
 void position_jacobian(const Model& m, const Eigen::Ref<const VectorXd>& q0, double t,
                        Eigen::Ref<VectorXd> psi, Eigen::Ref<MatrixXd> Psi) {
-  detail::position_jacobian(m, q0, t, nullptr, psi, Psi);
+  Psi.setZero();
+  DenseSink sink{Psi, nullptr};
+  for (const auto& c : m.constraints)
+    if (c.nrow0 > 0) detail::position_rows(m, c, q0, t, psi, sink);
 }
 
 void velocity_jacobian(const Model& m, const Eigen::Ref<const VectorXd>& q0, double t,

@@ -52,9 +52,9 @@ struct Solve {
     return false;
   }
 
-  // q_out = q - alpha dx on the free coordinates
+  // q_out = q - alpha dx on the free coordinates (q_out may be q)
   void move(const VectorXd& q, double alpha, VectorXd& q_out) const {
-    q_out = q;
+    if (&q_out != &q) q_out = q;
     for (int k = 0; k < m.n0; ++k) {
       const int c = colmap ? colmap[k] : k;
       if (c >= 0) q_out[k] -= alpha * w.dx[c];
@@ -64,22 +64,41 @@ struct Solve {
   enum class Trial { accepted, stalled, non_finite };
 
   // Backtracking from the whole step, psi and J evaluated at each trial point (so, on acceptance,
-  // at the new iterate q). err: |psi|_inf at q; norm2: |psi|_2 at q.
-  Trial search(VectorXd& q, double err, double norm2) {
+  // at the new iterate q). err: |psi|_inf at q (updated on acceptance); norm2: |psi|_2 at q.
+  Trial search(VectorXd& q, double& err, double norm2) {
     for (double alpha = 1; alpha >= o.min_alpha; alpha *= 0.5) {
       move(q, alpha, *w.q_trial);
       evaluate(*w.q_trial);
       const bool finite = w.psi.allFinite();
       if (!finite && o.non_finite == NonFinite::stop) return Trial::non_finite;
-      const bool accept = o.line_search == LineSearch::decrease
-                              ? w.psi.lpNorm<Eigen::Infinity>() < err
-                              : finite && w.psi.norm() <= (1 - 1e-4 * alpha) * norm2;
+      bool accept;
+      if (o.line_search == LineSearch::decrease) {
+        const double e = w.psi.lpNorm<Eigen::Infinity>();
+        accept = e < err;
+        if (accept) err = e;
+      } else {
+        accept = finite && w.psi.norm() <= (1 - 1e-4 * alpha) * norm2;
+        if (accept) err = w.psi.lpNorm<Eigen::Infinity>();
+      }
       if (accept) {
         q.swap(*w.q_trial);
         return Trial::accepted;
       }
     }
+    evaluate(q);  // psi and J of the last iterate (they hold the last trial's)
     return Trial::stalled;
+  }
+
+  // The step dx taken (whole, or by the line search) from q; psi and J, and err = |psi|_inf,
+  // evaluated at the new q unless `evaluate_new` is false (the last iteration, not tested).
+  Trial advance(VectorXd& q, double& err, double norm2, bool evaluate_new) {
+    if (o.line_search != LineSearch::none) return search(q, err, norm2);
+    move(q, 1.0, q);
+    if (evaluate_new) {
+      evaluate(q);
+      err = w.psi.lpNorm<Eigen::Infinity>();
+    }
+    return Trial::accepted;
   }
 };
 
@@ -99,37 +118,19 @@ NewtonResult solve_positions(const Model& m, const NewtonOptions& o, NewtonBuffe
   for (;;) {
     r.residual = err;
     if (err <= o.tolerance) return r;
-    if (++r.iterations > o.max_iterations) {
-      r.status = NewtonStatus::max_iterations;
-      return r;
-    }
+    if (++r.iterations > o.max_iterations) break;
     const double norm2 = o.line_search == LineSearch::armijo ? w.psi.norm() : 0.0;
     if (!s.step()) {
       r.status = NewtonStatus::singular;
       return r;
     }
     const bool last = r.iterations == o.max_iterations && !o.test_last;
-    if (o.line_search == LineSearch::none) {
-      for (int k = 0; k < m.n0; ++k) {  // the whole step, in place
-        const int c = s.colmap ? s.colmap[k] : k;
-        if (c >= 0) q0[k] -= w.dx[c];
-      }
-      if (last) break;
-      s.evaluate(q0);
-    } else {
-      const Solve::Trial trial = s.search(q0, err, norm2);
-      if (trial == Solve::Trial::non_finite) {
-        r.status = NewtonStatus::non_finite;
-        return r;
-      }
-      if (trial == Solve::Trial::stalled) {
-        s.evaluate(q0);  // psi and J of the last iterate (they hold the last trial's)
-        r.status = NewtonStatus::stalled;
-        return r;
-      }
-      if (last) break;
+    const Solve::Trial trial = s.advance(q0, err, norm2, !last);
+    if (trial != Solve::Trial::accepted) {
+      r.status = trial == Solve::Trial::stalled ? NewtonStatus::stalled : NewtonStatus::non_finite;
+      return r;
     }
-    err = w.psi.lpNorm<Eigen::Infinity>();
+    if (last) break;
   }
   r.status = NewtonStatus::max_iterations;
   return r;

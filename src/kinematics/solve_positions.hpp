@@ -92,7 +92,9 @@ struct NewtonResult {
   // iterations begun (the last one unfinished unless converged; max_iterations + 1 when the last
   // iterate was tested and failed)
   int iterations = 0;
-  double residual = 0;  // |psi|_inf at the returned q0
+  // |psi|_inf at the last iterate tested: the returned q0, unless the iteration limit was reached
+  // with test_last false
+  double residual = 0;
 };
 
 // The caller's storage, sized once for the model (m0 rows, `free` = the coordinates not held
