@@ -135,7 +135,8 @@ struct ForwardData {
                      const VectorXd& efforts);
   // Project q0 on psi = 0 and q1 on A q1 = b, mass-orthogonally and regularized by the
   // augmented-Lagrangian penalty (Bayo, Cuadrado): (W + alpha J^T N^2 J) dx = -alpha J^T N^2 r,
-  // iterated (N: the dimensionless row scaling).
+  // iterated (N: the dimensionless row scaling). Positions: solve_positions (NewtonStep::damped,
+  // src/kinematics/solve_positions.hpp); velocities: the same correction, a linear problem, here.
   // In regular directions each iteration divides the residual by ~alpha sigma^2 / m (~1e7); in a
   // direction where the Jacobian loses rank (sigma -> 0) the correction vanishes instead of
   // blowing up as 1/sigma, so a state near a singular position is not thrown onto another branch.

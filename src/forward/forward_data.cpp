@@ -12,6 +12,8 @@
 #include "constraints/constraints.hpp"
 #include "dynamics/reactions.hpp"
 #include "forward/forward_run.hpp"
+#include "kinematics/conditioning.hpp"
+#include "kinematics/solve_positions.hpp"
 #include "linalg/small_lu.hpp"
 #include "mo2d/dynamics.hpp"
 #include "mo2d/error.hpp"
@@ -168,11 +170,7 @@ double ForwardData::solve_schur() {
 
 // out[i] = 1 / |row i of J diag(d)| (1 for a zero row).
 void ForwardData::row_scale_of(const MatrixXd& J, const VectorXd& d, VectorXd& out) const {
-  for (Eigen::Index i = 0; i < J.rows(); ++i) {
-    double s = 0;
-    for (Eigen::Index j = 0; j < J.cols(); ++j) s += (J(i, j) * d[j]) * (J(i, j) * d[j]);
-    out[i] = s > 0 ? 1.0 / std::sqrt(s) : 1.0;
-  }
+  detail::unit_row_scale(J, d, out);
 }
 
 // (sigma_min / sigma_max)^2 of the dimensionless N A diag(d), estimated by the pivot ratio of the
@@ -389,23 +387,40 @@ double ForwardData::note_conditioning(double t, const VectorXd& q0, double ratio
   return ratio;
 }
 
+namespace {
+
+using detail::LineSearch;
+using detail::NewtonBuffers;
+using detail::NewtonOptions;
+using detail::NewtonStep;
+using detail::NonFinite;
+
+// Regularized Newton in the mass metric from a state within the integrator's tolerance of psi = 0
+// (solve_positions.hpp): six steps, the last not tested, no line search, no finiteness test (the
+// recorder's drift and finiteness checks judge the result).
+NewtonOptions projection_newton(double tolerance, double penalty) {
+  return {.tolerance = tolerance,
+          .max_iterations = 6,
+          .test_last = false,
+          .step = NewtonStep::damped,
+          .penalty = penalty,
+          .line_search = LineSearch::none,
+          .non_finite = NonFinite::ignore};
+}
+
+}  // namespace
+
 void ForwardData::project(double t, VectorXd& q0, VectorXd& q1, double tol_pos, double tol_vel) {
   ++stats.projections;
-  if (m.m0 > 0) {
-    for (int it = 0; it < 6; ++it) {
-      position_jacobian(m, q0, t, psi, Psi);
-      if (psi.lpNorm<Eigen::Infinity>() <= tol_pos) break;
-      row_scale_of(Psi, pos_scale, pos_row_scale);
-      Psi = pos_row_scale.asDiagonal() * Psi;  // dimensionless rows
-      psi.array() *= pos_row_scale.array();
-      W0 = M0;
-      W0.noalias() += alpha * Psi.transpose() * Psi;
-      llt_G0.compute(W0);
-      dq0.noalias() = -alpha * Psi.transpose() * psi;
-      llt_G0.solveInPlace(dq0);
-      q0 += dq0;
-    }
-  }
+  NewtonBuffers pos{.psi = psi,
+                    .J = Psi,
+                    .dx = dq0,
+                    .metric = &M0,
+                    .col_scale = &pos_scale,
+                    .row_scale = &pos_row_scale,
+                    .W = &W0,
+                    .llt = &llt_G0};
+  detail::solve_positions(m, projection_newton(tol_pos, alpha), pos, t, {}, q0);
   if (m.m1 == 0) return;
   velocity_jacobian(m, q0, t, A, b);
   bool factored = false;

@@ -10,6 +10,8 @@
 #include <sstream>
 
 #include "constraints/constraints.hpp"
+#include "kinematics/residuals.hpp"
+#include "kinematics/solve_positions.hpp"
 #include "linalg/small_lu.hpp"
 #include "mo2d/dynamics.hpp"
 #include "mo2d/error.hpp"
@@ -211,14 +213,6 @@ InverseData::~InverseData() = default;
 
 namespace {
 
-void evaluate_positions(const Model& m, InverseData& d, const VectorXd& q, double t, VectorXd& psi,
-                        MatrixXd& J) {
-  J.setZero();
-  detail::DenseSink sink{J, d.colmap.data()};
-  for (const auto& c : m.constraints)
-    if (c.nrow0 > 0) detail::position_rows(m, c, q, t, psi, sink);
-}
-
 [[noreturn]] void throw_singular_positions(const Model& m, InverseData& d, double t, bool first) {
   std::vector<std::string> free_labels;
   for (int k = 0; k < m.n0; ++k)
@@ -245,7 +239,7 @@ void evaluate_positions(const Model& m, InverseData& d, const VectorXd& q, doubl
     from += (k ? ", " : "") + d.p_labels[k] + " = " + fmt(d.s_good[k]);
     stop += (k ? ", " : "") + d.p_labels[k] + " = " + fmt(d.q0_good[d.p_index[k]]);
   }
-  evaluate_positions(m, d, d.q0_good, t, d.psi, d.J);
+  detail::position_jacobian(m, d.q0_good, t, d.colmap.data(), d.psi, d.J);
   double ratio = 1;
   if (d.J.size()) {
     const Eigen::VectorXd sv = Eigen::JacobiSVD<MatrixXd>(d.J).singularValues();
@@ -272,54 +266,33 @@ void evaluate_positions(const Model& m, InverseData& d, const VectorXd& q, doubl
               d.p_labels.empty() ? "" : d.p_labels[0], t);
 }
 
-enum class NewtonStatus { converged, singular, diverged };
+using detail::NewtonStatus;
 
-// Newton on psi(q0) = 0 over the free coordinates from d.q0, with backtracking. Writes
-// d.residual_position and d.newton_iterations; leaves d.J evaluated at the last iterate.
+// Newton from a prediction O(h^3) away, J square (solve_positions.hpp): the exact LU step, whose
+// pivot ratio tells a singular configuration; halving until |psi|_inf decreases.
+detail::NewtonOptions sample_newton(const InverseOptions& o, double scale) {
+  return {.tolerance = o.position_tolerance * scale,
+          .max_iterations = o.max_newton_iterations,
+          .test_last = true,
+          .step = detail::NewtonStep::lu,
+          .singular_pivot_ratio = o.singular_pivot_ratio,
+          .line_search = detail::LineSearch::decrease,
+          .min_alpha = 1e-4,
+          .non_finite = detail::NonFinite::stop};
+}
+
+// Newton on psi(q0) = 0 over the free coordinates from d.q0 (throws if a residual is not finite).
+// Writes d.residual_position and d.newton_iterations; leaves d.J evaluated at the last iterate.
 NewtonStatus newton(const Model& m, InverseData& d, double t) {
-  const InverseOptions& o = d.options;
-  const double tol = o.position_tolerance * m.scale;
-  evaluate_positions(m, d, d.q0, t, d.psi, d.J);
-  check_finite_rows(d.psi, m.position_row_labels, "position", t);
-  double err = m.m0 ? d.psi.lpNorm<Eigen::Infinity>() : 0.0;
-  int it = 0;
-  NewtonStatus status = NewtonStatus::converged;
-  while (err > tol) {
-    if (++it > o.max_newton_iterations) {
-      status = NewtonStatus::diverged;
-      break;
-    }
-    if (d.lu_pos->compute(d.J) < o.singular_pivot_ratio) {
-      status = NewtonStatus::singular;
-      break;
-    }
-    d.trial = d.psi;
-    d.lu_pos->solve_in_place(d.trial);  // Newton step on the free coordinates
-    double alpha = 1;
-    for (;;) {
-      d.q0_trial = d.q0;
-      for (int k = 0; k < m.n0; ++k)
-        if (d.colmap[k] >= 0) d.q0_trial[k] -= alpha * d.trial[d.colmap[k]];
-      evaluate_positions(m, d, d.q0_trial, t, d.psi, d.J);
-      check_finite_rows(d.psi, m.position_row_labels, "position", t);
-      const double e2 = d.psi.lpNorm<Eigen::Infinity>();
-      if (e2 < err) {
-        d.q0.swap(d.q0_trial);
-        err = e2;
-        break;
-      }
-      alpha *= 0.5;
-      if (alpha < 1e-4) {
-        status = NewtonStatus::diverged;
-        break;
-      }
-    }
-    if (status != NewtonStatus::converged) break;
-  }
-  if (status != NewtonStatus::converged) evaluate_positions(m, d, d.q0, t, d.psi, d.J);
-  d.newton_iterations = it;
-  d.residual_position = err;
-  return status;
+  detail::NewtonBuffers w{
+      .psi = d.psi, .J = d.J, .dx = d.trial, .q_trial = &d.q0_trial, .lu = d.lu_pos.get()};
+  const detail::NewtonResult r =
+      detail::solve_positions(m, sample_newton(d.options, m.scale), w, t, d.colmap, d.q0);
+  if (r.status == NewtonStatus::non_finite)
+    check_finite_rows(d.psi, m.position_row_labels, "position", t);  // throws
+  d.newton_iterations = r.iterations;
+  d.residual_position = r.residual;
+  return r.status;
 }
 
 // The positions just solved against their prediction from the last sample (d.q0_pred): on a

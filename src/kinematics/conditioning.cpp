@@ -1,5 +1,6 @@
-// Kinematics: constraint evaluation over all constraints, assembly, ranks and conditioning.
-#include "mo2d/kinematics.hpp"
+// Kinematics: rank tests of the constraint Jacobians at the initial configuration, and the
+// conditioning of their dimensionless form (column_scaling, mo2d/kinematics.hpp).
+#include "kinematics/conditioning.hpp"
 
 #include <Eigen/QR>
 #include <Eigen/SVD>
@@ -7,105 +8,10 @@
 #include <cmath>
 #include <sstream>
 
-#include "constraints/constraints.hpp"
 #include "mo2d/error.hpp"
+#include "mo2d/kinematics.hpp"
 
 namespace mo2d {
-
-using detail::DenseSink;
-using detail::DenseVelSink;
-using detail::NullSink;
-
-void position_residual(const Model& m, const Eigen::Ref<const VectorXd>& q0, double t,
-                       Eigen::Ref<VectorXd> psi) {
-  NullSink sink;
-  for (const auto& c : m.constraints)
-    if (c.nrow0 > 0) detail::position_rows(m, c, q0, t, psi, sink);
-}
-
-void position_jacobian(const Model& m, const Eigen::Ref<const VectorXd>& q0, double t,
-                       Eigen::Ref<VectorXd> psi, Eigen::Ref<MatrixXd> Psi) {
-  Psi.setZero();
-  DenseSink sink{Psi, nullptr};
-  for (const auto& c : m.constraints)
-    if (c.nrow0 > 0) detail::position_rows(m, c, q0, t, psi, sink);
-}
-
-void velocity_jacobian(const Model& m, const Eigen::Ref<const VectorXd>& q0, double t,
-                       Eigen::Ref<MatrixXd> A, Eigen::Ref<VectorXd> b) {
-  A.setZero();
-  DenseVelSink sink{A};
-  for (const auto& c : m.constraints) detail::velocity_rows(m, c, q0, t, b, sink);
-}
-
-void acceleration_rhs(const Model& m, const Eigen::Ref<const VectorXd>& q0,
-                      const Eigen::Ref<const VectorXd>& q1, double t, Eigen::Ref<VectorXd> c) {
-  for (const auto& k : m.constraints) detail::acceleration_rows(m, k, q0, q1, t, c);
-}
-
-namespace {
-
-// Row with the largest |residual|, or the first non-finite one.
-int worst_index(const VectorXd& r) {
-  for (int k = 0; k < r.size(); ++k)
-    if (!std::isfinite(r[k])) return k;
-  Eigen::Index k = 0;
-  if (r.size()) r.cwiseAbs().maxCoeff(&k);
-  return static_cast<int>(k);
-}
-
-std::string worst_row(const std::vector<std::string>& labels, const VectorXd& r) {
-  if (r.size() == 0) return "";
-  const int k = worst_index(r);
-  std::ostringstream s;
-  s << "'" << labels[k] << "' (residual " << r[k] << ")";
-  return s.str();
-}
-
-}  // namespace
-
-VectorXd assemble(const Model& m, const VectorXd& q0_guess, double t, std::span<const int> fixed,
-                  double tolerance) {
-  VectorXd q = q0_guess;
-  if (m.m0 == 0) return q;
-  std::vector<int> colmap(m.n0, 0);
-  for (int f : fixed) colmap[f] = -1;
-  int nfree = 0;
-  for (int& c : colmap) c = c < 0 ? -1 : nfree++;
-  VectorXd psi(m.m0), trial_psi(m.m0), q_trial(m.n0);
-  MatrixXd J(m.m0, nfree);
-  const double tol = tolerance * m.scale;
-  for (int it = 0; it < 100; ++it) {
-    J.setZero();
-    DenseSink sink{J, colmap.data()};
-    for (const auto& c : m.constraints)
-      if (c.nrow0 > 0) detail::position_rows(m, c, q, t, psi, sink);
-    if (!psi.allFinite())
-      throw Error(
-          "assembly: non-finite constraint residual " + worst_row(m.position_row_labels, psi),
-          m.position_row_labels[worst_index(psi)], t);
-    const double norm = psi.norm();
-    if (psi.lpNorm<Eigen::Infinity>() <= tol) return q;
-    Eigen::CompleteOrthogonalDecomposition<MatrixXd> cod(J);
-    cod.setThreshold(1e-12);
-    const VectorXd dx = -cod.solve(psi);
-    double alpha = 1;
-    for (; alpha > 1e-8; alpha *= 0.5) {
-      q_trial = q;
-      for (int k = 0; k < m.n0; ++k)
-        if (colmap[k] >= 0) q_trial[k] += alpha * dx[colmap[k]];
-      position_residual(m, q_trial, t, trial_psi);
-      if (trial_psi.allFinite() && trial_psi.norm() <= (1 - 1e-4 * alpha) * norm) break;
-    }
-    if (alpha <= 1e-8) break;
-    q = q_trial;
-  }
-  position_residual(m, q, t, psi);
-  throw Error("the mechanism cannot be assembled: Newton stalled with the largest residual in " +
-                  worst_row(m.position_row_labels, psi) +
-                  " (conflicting constraints or unreachable geometry)",
-              m.position_row_labels[worst_index(psi)], t);
-}
 
 namespace {
 
@@ -240,6 +146,14 @@ Conditioning position_conditioning(const Model& m, const VectorXd& q0, double t)
 
 DofReport degrees_of_freedom(const Model& m, const VectorXd& q0, double t) {
   return {m.n1 - velocity_conditioning(m, q0, t).rank, m.n0 - position_conditioning(m, q0, t).rank};
+}
+
+void detail::unit_row_scale(const MatrixXd& J, const VectorXd& d, VectorXd& out) {
+  for (Eigen::Index i = 0; i < J.rows(); ++i) {
+    double s = 0;
+    for (Eigen::Index j = 0; j < J.cols(); ++j) s += (J(i, j) * d[j]) * (J(i, j) * d[j]);
+    out[i] = s > 0 ? 1.0 / std::sqrt(s) : 1.0;
+  }
 }
 
 }  // namespace mo2d
