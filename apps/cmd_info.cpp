@@ -16,26 +16,6 @@ namespace {
 // as near-singular: with double precision, velocities would lose more than 8 of 16 digits.
 constexpr double kNearSingular = 1e8;
 
-const char* kind_name(ConstraintKind k) {
-  switch (k) {
-    case ConstraintKind::rigid:
-      return "rigid body";
-    case ConstraintKind::revolute:
-      return "revolute";
-    case ConstraintKind::prismatic:
-      return "prismatic";
-    case ConstraintKind::slot:
-      return "pin-in-slot";
-    case ConstraintKind::coordinate:
-      return "coordinate";
-    case ConstraintKind::user_position:
-      return "user (position)";
-    case ConstraintKind::user_velocity:
-      return "user (velocity)";
-  }
-  return "?";
-}
-
 int info(const SceneOptions& o) {
   const Scene scene = load_scene_with_overrides(o);
   const Model m = build_model_of(scene);
@@ -53,7 +33,7 @@ int info(const SceneOptions& o) {
   for (const auto& c : m.constraints)
     if (c.nrow0 + c.nrow1 > 0)
       std::printf("  %-24s %-16s %d position rows, %d velocity rows\n", c.name.c_str(),
-                  kind_name(c.kind), c.nrow0, c.nrow1);
+                  constraint_kind_name(c.kind()), c.nrow0, c.nrow1);
 
   // consistency and conditioning of the initial configuration
   VectorXd psi(m.m0);

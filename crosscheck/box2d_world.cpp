@@ -48,7 +48,7 @@ bool rotates(const Box2DWorld& w, int body) {
 }
 
 // Axis i -> j of body 1 in its Box2D frame (world axes of the geometry; ground: world).
-b2Vec2 local_axis(const Model& m, const Constraint& c) {
+b2Vec2 local_axis(const Model& m, const Constraint::Slider& c) {
   const Vec2 pi = c.i.body < 0 ? c.i.fixed : m.bodies[c.i.body].geometry[c.i.local];
   const Vec2 pj = c.j.body < 0 ? c.j.fixed : m.bodies[c.j.body].geometry[c.j.local];
   return to_b2((pj - pi).normalized());
@@ -154,11 +154,7 @@ Box2DWorld build_box2d_world(const Model& m, const Eigen::VectorXd& q0, const Ei
     JointMap j;
     j.name = c.name;
     j.constraint = static_cast<int>(ci);
-    j.body1 = c.body1;
-    j.body2 = c.body2;
-    b2Body* A = body_of(w, c.body1);
-    b2Body* B = body_of(w, c.body2);
-    switch (c.kind) {
+    switch (c.kind()) {
       case ConstraintKind::rigid:
       case ConstraintKind::coordinate:  // an extra coordinate observes the motion only
         continue;
@@ -169,11 +165,16 @@ Box2DWorld build_box2d_world(const Model& m, const Eigen::VectorXd& q0, const Ei
         refuse("user velocity constraint '" + c.name + "' has no Box2D equivalent", c.name);
         break;
       case ConstraintKind::revolute: {
+        const auto& r = c.as<Constraint::Revolute>();
+        j.body1 = r.body1;
+        j.body2 = r.body2;
+        b2Body* A = body_of(w, r.body1);
+        b2Body* B = body_of(w, r.body2);
         b2RevoluteJointDef def;
         def.bodyA = A;
         def.bodyB = B;
-        def.localAnchorA = local_anchor(m, w, c.a);
-        def.localAnchorB = local_anchor(m, w, c.b);
+        def.localAnchorA = local_anchor(m, w, r.a);
+        def.localAnchorB = local_anchor(m, w, r.b);
         def.referenceAngle = B->GetAngle() - A->GetAngle();
         j.kind = JointKind::revolute;
         j.motor = motors && input_of(m, c.name, ".torque") != nullptr;
@@ -184,18 +185,24 @@ Box2DWorld build_box2d_world(const Model& m, const Eigen::VectorXd& q0, const Ei
       }
       case ConstraintKind::prismatic:
       case ConstraintKind::slot: {
-        const bool slot = c.kind == ConstraintKind::slot;
-        const bool locked = !slot && (c.lock_position || c.lock_velocity ||
-                                      (!rotates(w, c.body1) && !rotates(w, c.body2)));
+        const bool slot = c.kind() == ConstraintKind::slot;
+        const Constraint::Slider& s = *c.slider();
+        const auto* prismatic = std::get_if<Constraint::Prismatic>(&c.def);
+        const bool locked = !slot && (prismatic->lock_position || prismatic->lock_velocity ||
+                                      (!rotates(w, s.body1) && !rotates(w, s.body2)));
+        j.body1 = s.body1;
+        j.body2 = s.body2;
+        b2Body* A = body_of(w, s.body1);
+        b2Body* B = body_of(w, s.body2);
         const bool drives_slide = input_of(m, c.name, ".force") != nullptr;
         const bool drives_rotation = input_of(m, c.name, ".torque") != nullptr;
         if (locked) {
           b2PrismaticJointDef def;
           def.bodyA = A;
           def.bodyB = B;
-          def.localAnchorA = local_anchor(m, w, c.i);
-          def.localAnchorB = local_anchor(m, w, c.s);
-          def.localAxisA = local_axis(m, c);
+          def.localAnchorA = local_anchor(m, w, s.i);
+          def.localAnchorB = local_anchor(m, w, s.s);
+          def.localAxisA = local_axis(m, s);
           def.referenceAngle = B->GetAngle() - A->GetAngle();
           j.kind = JointKind::prismatic;
           j.motor = motors && drives_slide;
@@ -212,9 +219,9 @@ Box2DWorld build_box2d_world(const Model& m, const Eigen::VectorXd& q0, const Ei
           b2WheelJointDef def;
           def.bodyA = A;
           def.bodyB = B;
-          def.localAnchorA = local_anchor(m, w, c.i);
-          def.localAnchorB = local_anchor(m, w, c.s);
-          def.localAxisA = local_axis(m, c);
+          def.localAnchorA = local_anchor(m, w, s.i);
+          def.localAnchorB = local_anchor(m, w, s.s);
+          def.localAxisA = local_axis(m, s);
           def.stiffness = 0;  // a pin in a slot: no suspension spring
           def.damping = 0;
           j.kind = JointKind::wheel;
@@ -233,7 +240,7 @@ Box2DWorld build_box2d_world(const Model& m, const Eigen::VectorXd& q0, const Ei
 
 double joint_coordinate(const Model& m, const Box2DWorld& w, const JointMap& j,
                         const Eigen::VectorXd& q0) {
-  if (j.linear_motor) return q0[m.constraints[j.constraint].q];
+  if (j.linear_motor) return q0[m.constraints[j.constraint].as<Constraint::Prismatic>().q];
   return wrap_angle(box2d_angle(m, w, j.body2, q0) - box2d_angle(m, w, j.body1, q0));
 }
 

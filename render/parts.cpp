@@ -29,24 +29,30 @@ Parts mechanism_parts(const Model& m) {
   for (const Constraint& c : m.constraints) {
     JointPart j;
     j.name = c.name;
-    j.body1 = c.body1;
-    j.body2 = c.body2;
-    switch (c.kind) {
-      case ConstraintKind::revolute:
+    switch (c.kind()) {
+      case ConstraintKind::revolute: {
+        const auto& r = c.as<Constraint::Revolute>();
+        j.body1 = r.body1;
+        j.body2 = r.body2;
         j.kind = JointKind::revolute;
-        j.node = c.b;
+        j.node = r.b;
         break;
+      }
       case ConstraintKind::prismatic:
-      case ConstraintKind::slot:
-        j.kind = c.kind == ConstraintKind::prismatic ? JointKind::prismatic : JointKind::slot;
-        j.i = c.i;
-        j.j = c.j;
-        j.s = c.s;
-        j.q = c.q;
-        if (j.kind == JointKind::prismatic && c.body2 >= 0 && m.bodies[c.body2].nodes.size() == 1)
-          p.block[c.body2] = true;
-        if (j.kind == JointKind::slot && c.body1 >= 0) p.slotted[c.body1] = true;
+      case ConstraintKind::slot: {
+        const Constraint::Slider& s = *c.slider();
+        j.body1 = s.body1;
+        j.body2 = s.body2;
+        j.kind = c.kind() == ConstraintKind::prismatic ? JointKind::prismatic : JointKind::slot;
+        j.i = s.i;
+        j.j = s.j;
+        j.s = s.s;
+        j.q = s.q;
+        if (j.kind == JointKind::prismatic && s.body2 >= 0 && m.bodies[s.body2].nodes.size() == 1)
+          p.block[s.body2] = true;
+        if (j.kind == JointKind::slot && s.body1 >= 0) p.slotted[s.body1] = true;
         break;
+      }
       default:
         continue;
     }

@@ -14,6 +14,7 @@
 #include <string>
 #include <unordered_map>
 #include <unordered_set>
+#include <variant>
 #include <vector>
 
 #include "mo2d/budget.hpp"
@@ -76,6 +77,7 @@ struct Body {
   int slots() const { return 2 * static_cast<int>(geometry.size()) + 1; }
 };
 
+// The kinds of constraint, in the order of the alternatives of Constraint::Def.
 enum class ConstraintKind {
   rigid,
   revolute,
@@ -85,35 +87,78 @@ enum class ConstraintKind {
   user_position,
   user_velocity
 };
+const char* constraint_kind_name(ConstraintKind k);  // "rigid body", "pin-in-slot", ...
 
+// One constraint: what every kind shares (name, subsystem, rows) and the data of its kind (`def`,
+// one struct per kind; their rows are written in src/constraints/<kind>.hpp).
 struct Constraint {
-  ConstraintKind kind;
+  struct Rigid {  // the rigid rows of one body (nodes, l01 and frame from the Body)
+    static constexpr ConstraintKind kind = ConstraintKind::rigid;
+    int body = -1;
+  };
+  struct Revolute {  // a revolute joint kept as rows: node a on body 1, b on body 2
+    static constexpr ConstraintKind kind = ConstraintKind::revolute;
+    NodeRef a, b;
+    int body1 = -1, body2 = -1;
+  };
+  struct Slider {  // pin-in-slot: axis i -> j (body 1), slider s (body 2)
+    static constexpr ConstraintKind kind = ConstraintKind::slot;
+    NodeRef i, j, s;
+    int q = -1;         // slider coordinate
+    double length = 0;  // |p_j - p_i| (constant)
+    int body1 = -1, body2 = -1;
+  };
+  struct Prismatic : Slider {  // a slider with the rotation lock of body 2 on body 1
+    static constexpr ConstraintKind kind = ConstraintKind::prismatic;
+    bool lock_position = false, lock_velocity = false;
+    double lock_angle = 0;  // theta_2 - theta_1 at the initial configuration
+    OmegaRef w1, w2;
+  };
+  // Extra coordinate: d/dt q[coord] = sum rate_terms; position invariant
+  //   q[coord] - sum coord_terms - sum angle_terms(theta_body) - offset = 0 (mod 2 pi if angles)
+  struct Coordinate {
+    static constexpr ConstraintKind kind = ConstraintKind::coordinate;
+    int coord = -1;
+    std::vector<std::pair<VarRef, double>> rate_terms;
+    std::vector<std::pair<int, double>> coord_terms;
+    std::vector<std::pair<int, double>> angle_terms;  // (body, weight); body -1 = ground
+    bool holonomic = true;
+    double offset = 0;
+  };
+  struct UserPosition {  // psi(x, t) = 0, x = the q0 variables args
+    static constexpr ConstraintKind kind = ConstraintKind::user_position;
+    std::vector<VarRef> args;
+    std::function<Jet(std::span<const Jet>, Jet)> psi;
+  };
+  struct UserVelocity {  // g(x, v, t) = 0, x = the q0 variables args, v = the q1 rates
+    static constexpr ConstraintKind kind = ConstraintKind::user_velocity;
+    std::vector<VarRef> args, rates;
+    std::function<Jet(std::span<const Jet>, std::span<const Jet>, Jet)> g;
+  };
+  using Def = std::variant<Rigid, Revolute, Prismatic, Slider, Coordinate, UserPosition,
+                           UserVelocity>;  // in the order of ConstraintKind
+
   std::string name;
   int owner = 0;
-  int body = -1;      // rigid
-  NodeRef a, b;       // revolute (a on body 1, b on body 2)
-  NodeRef i, j, s;    // prismatic/slot: axis i -> j (body 1), slider s (body 2)
-  int q = -1;         // slider coordinate
-  double length = 0;  // |p_j - p_i| (constant)
-  int body1 = -1, body2 = -1;
-  bool lock_position = false, lock_velocity = false;
-  double lock_angle = 0;  // theta_2 - theta_1 at the initial configuration
-  OmegaRef w1, w2;
-  // extra coordinate: d/dt q[coord] = sum rate_terms; position invariant
-  //   q[coord] - sum coord_terms - sum angle_terms(theta_body) - offset = 0 (mod 2 pi if angles)
-  int coord = -1;
-  std::vector<std::pair<VarRef, double>> rate_terms;
-  std::vector<std::pair<int, double>> coord_terms;
-  std::vector<std::pair<int, double>> angle_terms;  // (body, weight); body -1 = ground
-  bool holonomic = true;
-  double offset = 0;
-  // user constraints
-  std::vector<VarRef> args, rates;
-  std::function<Jet(std::span<const Jet>, Jet)> psi;
-  std::function<Jet(std::span<const Jet>, std::span<const Jet>, Jet)> g;
-  // rows
   int row0 = 0, nrow0 = 0;  // position rows
   int row1 = 0, nrow1 = 0;  // velocity rows
+  Def def;
+
+  ConstraintKind kind() const { return static_cast<ConstraintKind>(def.index()); }
+  // The data of kind T; an Error naming the constraint if it is of another kind.
+  template <class T>
+  const T& as() const {
+    if (const T* d = std::get_if<T>(&def)) return *d;
+    wrong_kind(T::kind);
+  }
+  // The slider of a prismatic joint or pin-in-slot; nullptr for the other kinds.
+  const Slider* slider() const {
+    if (const auto* p = std::get_if<Prismatic>(&def)) return p;
+    return std::get_if<Slider>(&def);
+  }
+
+ private:
+  [[noreturn]] void wrong_kind(ConstraintKind wanted) const;
 };
 
 struct Input {

@@ -2,8 +2,8 @@
 // What every constraint kind shares (internal header): angles, z x, references to variables, and
 // the two entry adapters through which a kind writes its Jacobian entries ONCE for both levels.
 //
-//  levels: position rows psi(q0, t) = 0 with their Jacobian d psi / d q0 (rows from c.row0),
-//          velocity rows A(q0, t) q1 = b (rows from c.row1),
+//  levels: position rows psi(q0, t) = 0 with their Jacobian d psi / d q0 (from Constraint::row0),
+//          velocity rows A(q0, t) q1 = b (from Constraint::row1),
 //          acceleration right-hand side A a1 = c, c = exact d/dt of the velocity rows at a1 = 0.
 //  A kind's entries go to a `Rows` adapter:
 //    rows.node(row, NodeRef n, cx, cy)  coefficient (cx, cy) of the node's (x, y),

@@ -1,6 +1,7 @@
 #pragma once
 // Constraint rows of every kind, at position, velocity and acceleration level (internal header):
-// the one dispatch over ConstraintKind. The maths of each kind opens its own file:
+// the one dispatch over ConstraintKind. Constraint (mo2d/model.hpp) holds the rows and, in `def`,
+// one struct per kind; the maths of each kind opens its own file:
 //   rigid.hpp           rigid body (Example 2.6)
 //   revolute.hpp        revolute joint kept as rows (5.27)
 //   prismatic_slot.hpp  prismatic joint, pin-in-slot (5.31) and the rotation lock (5.30)
@@ -18,27 +19,33 @@
 
 namespace mo2d::detail {
 
+// Each level switches on the kind, then takes the kind's struct out of c.def (std::get on the kind
+// just tested: no allocation, one index check) and the first row of the level.
+
 // Position rows: residual into res[row], Jacobian entries jac.add(row, q0 index, value).
 template <class Sink>
 void position_rows(const Model& m, const Constraint& c, const Eigen::Ref<const VectorXd>& q0,
                    double t, Eigen::Ref<VectorXd> res, Sink& jac) {
   PositionEntries<Sink> rows{jac};
-  switch (c.kind) {
+  const int r = c.row0;
+  switch (c.kind()) {
     case ConstraintKind::rigid:
-      rigid_position(m, c, q0, res, rows);
+      rigid_position(m, std::get<Constraint::Rigid>(c.def), r, q0, res, rows);
       break;
     case ConstraintKind::revolute:
-      revolute_position(c, q0, res, rows);
+      revolute_position(std::get<Constraint::Revolute>(c.def), r, q0, res, rows);
       break;
     case ConstraintKind::prismatic:
+      prismatic_position(m, std::get<Constraint::Prismatic>(c.def), r, q0, res, rows);
+      break;
     case ConstraintKind::slot:
-      prismatic_position(m, c, q0, res, rows);
+      slot_position(std::get<Constraint::Slider>(c.def), r, q0, res, rows);
       break;
     case ConstraintKind::coordinate:
-      coordinate_position(m, c, q0, res, rows);
+      coordinate_position(m, std::get<Constraint::Coordinate>(c.def), r, q0, res, rows);
       break;
     case ConstraintKind::user_position:
-      user_psi_position(c, q0, t, res, rows);
+      user_psi_position(std::get<Constraint::UserPosition>(c.def), r, q0, t, res, rows);
       break;
     case ConstraintKind::user_velocity:
       break;
@@ -51,25 +58,28 @@ template <class Sink>
 void velocity_rows(const Model& m, const Constraint& c, const Eigen::Ref<const VectorXd>& q0,
                    double t, Eigen::Ref<VectorXd> rhs, Sink& A) {
   VelocityEntries<Sink> rows{A};
-  switch (c.kind) {
+  const int r = c.row1;
+  switch (c.kind()) {
     case ConstraintKind::rigid:
-      rigid_velocity(m, c, q0, rhs, rows);
+      rigid_velocity(m, std::get<Constraint::Rigid>(c.def), r, q0, rhs, rows);
       break;
     case ConstraintKind::revolute:
-      revolute_velocity(c, rhs, rows);
+      revolute_velocity(std::get<Constraint::Revolute>(c.def), r, rhs, rows);
       break;
     case ConstraintKind::prismatic:
+      prismatic_velocity(m, std::get<Constraint::Prismatic>(c.def), r, q0, rhs, rows);
+      break;
     case ConstraintKind::slot:
-      prismatic_velocity(m, c, q0, rhs, rows);
+      slot_velocity(std::get<Constraint::Slider>(c.def), r, q0, rhs, rows);
       break;
     case ConstraintKind::coordinate:
-      coordinate_velocity(c, rhs, rows);
+      coordinate_velocity(std::get<Constraint::Coordinate>(c.def), r, rhs, rows);
       break;
     case ConstraintKind::user_position:
-      user_psi_velocity(c, q0, t, rhs, rows);
+      user_psi_velocity(std::get<Constraint::UserPosition>(c.def), r, q0, t, rhs, rows);
       break;
     case ConstraintKind::user_velocity:
-      user_g_velocity(c, q0, t, rhs, rows);
+      user_g_velocity(std::get<Constraint::UserVelocity>(c.def), r, q0, t, rhs, rows);
       break;
   }
 }
@@ -79,25 +89,28 @@ inline void acceleration_rows(const Model& m, const Constraint& c,
                               const Eigen::Ref<const VectorXd>& q0,
                               const Eigen::Ref<const VectorXd>& q1, double t,
                               Eigen::Ref<VectorXd> rhs) {
-  switch (c.kind) {
+  const int r = c.row1;
+  switch (c.kind()) {
     case ConstraintKind::rigid:
-      rigid_acceleration(m, c, q1, rhs);
+      rigid_acceleration(m, std::get<Constraint::Rigid>(c.def), r, q1, rhs);
       break;
     case ConstraintKind::revolute:
-      revolute_acceleration(c, rhs);
+      revolute_acceleration(r, rhs);
       break;
     case ConstraintKind::prismatic:
+      prismatic_acceleration(std::get<Constraint::Prismatic>(c.def), r, q1, rhs);
+      break;
     case ConstraintKind::slot:
-      prismatic_acceleration(c, q1, rhs);
+      slot_acceleration(std::get<Constraint::Slider>(c.def), r, q1, rhs);
       break;
     case ConstraintKind::coordinate:
-      coordinate_acceleration(c, rhs);
+      coordinate_acceleration(r, rhs);
       break;
     case ConstraintKind::user_position:
-      user_psi_acceleration(c, q0, q1, t, rhs);
+      user_psi_acceleration(std::get<Constraint::UserPosition>(c.def), r, q0, q1, t, rhs);
       break;
     case ConstraintKind::user_velocity:
-      user_g_acceleration(c, q0, q1, t, rhs);
+      user_g_acceleration(std::get<Constraint::UserVelocity>(c.def), r, q0, q1, t, rhs);
       break;
   }
 }

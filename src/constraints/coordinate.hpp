@@ -15,16 +15,16 @@
 //   A a1 = 0
 //
 // psi is written in q0 (theta through its gradient), A in q1 (omega directly), from two term lists
-// of Constraint: the entries are written once at each level.
+// of Constraint::Coordinate: the entries are written once at each level.
 #include "constraints/common.hpp"
 
 namespace mo2d::detail {
 
 template <class Rows>
-void coordinate_position(const Model& m, const Constraint& c, const Eigen::Ref<const VectorXd>& q0,
-                         Eigen::Ref<VectorXd> res, Rows& rows) {
+void coordinate_position(const Model& m, const Constraint::Coordinate& c, int r,
+                         const Eigen::Ref<const VectorXd>& q0, Eigen::Ref<VectorXd> res,
+                         Rows& rows) {
   if (!c.holonomic) return;
-  const int r = c.row0;
   double v = q0[c.coord] - c.offset;
   rows.var(r, VarRef{c.coord, -1, -1}, 1);
   for (auto [k, w] : c.coord_terms) {
@@ -39,15 +39,15 @@ void coordinate_position(const Model& m, const Constraint& c, const Eigen::Ref<c
 }
 
 template <class Rows>
-void coordinate_velocity(const Constraint& c, Eigen::Ref<VectorXd> rhs, Rows& rows) {
-  const int r = c.row1;
+void coordinate_velocity(const Constraint::Coordinate& c, int r, Eigen::Ref<VectorXd> rhs,
+                         Rows& rows) {
   rows.var(r, VarRef{c.coord, -1, -1}, 1);
   for (const auto& [ref, w] : c.rate_terms) rows.var(r, ref, -w);
   rhs[r] = 0;
 }
 
-inline void coordinate_acceleration(const Constraint& c, Eigen::Ref<VectorXd> rhs) {
-  rhs[c.row1] = 0;
+inline void coordinate_acceleration(int r, Eigen::Ref<VectorXd> rhs) {
+  rhs[r] = 0;
 }
 
 }  // namespace mo2d::detail

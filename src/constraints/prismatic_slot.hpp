@@ -30,14 +30,14 @@ struct SliderAxis {
   double s;  // sigma = q / l
   Vec2 pi, pj;
 };
-inline SliderAxis slider_axis(const Constraint& c, const Eigen::Ref<const VectorXd>& q0) {
+inline SliderAxis slider_axis(const Constraint::Slider& c, const Eigen::Ref<const VectorXd>& q0) {
   const double q = q0[c.q], l = c.length, s = q / l;
   return {s, node_position(c.i, q0), node_position(c.j, q0)};
 }
 
 // The entries of d psi / d q0 = A (without the lock), from row r.
 template <class Rows>
-void prismatic_entries(const Constraint& c, const SliderAxis& ax, int r, Rows& rows) {
+void prismatic_entries(const Constraint::Slider& c, const SliderAxis& ax, int r, Rows& rows) {
   const double s = ax.s;
   point_entries(rows, r, c.s, 1);
   point_entries(rows, r, c.i, -(1 - s));
@@ -47,15 +47,37 @@ void prismatic_entries(const Constraint& c, const SliderAxis& ax, int r, Rows& r
   rows.var(r + 1, VarRef{c.q, -1, -1}, dq.y());
 }
 
+// Pin-in-slot (and the slider part of a prismatic joint): rows r, r + 1.
 template <class Rows>
-void prismatic_position(const Model& m, const Constraint& c, const Eigen::Ref<const VectorXd>& q0,
-                        Eigen::Ref<VectorXd> res, Rows& rows) {
-  const int r = c.row0;
+void slot_position(const Constraint::Slider& c, int r, const Eigen::Ref<const VectorXd>& q0,
+                   Eigen::Ref<VectorXd> res, Rows& rows) {
   const SliderAxis ax = slider_axis(c, q0);
   const Vec2 e = node_position(c.s, q0) - (1 - ax.s) * ax.pi - ax.s * ax.pj;
   res[r] = e.x();
   res[r + 1] = e.y();
   prismatic_entries(c, ax, r, rows);
+}
+
+template <class Rows>
+void slot_velocity(const Constraint::Slider& c, int r, const Eigen::Ref<const VectorXd>& q0,
+                   Eigen::Ref<VectorXd> rhs, Rows& rows) {
+  prismatic_entries(c, slider_axis(c, q0), r, rows);
+  rhs[r] = rhs[r + 1] = 0;
+}
+
+inline void slot_acceleration(const Constraint::Slider& c, int r,
+                              const Eigen::Ref<const VectorXd>& q1, Eigen::Ref<VectorXd> rhs) {
+  const Vec2 e = (2 * q1[c.q] / c.length) * (node_velocity(c.j, q1) - node_velocity(c.i, q1));
+  rhs[r] = e.x();
+  rhs[r + 1] = e.y();
+}
+
+// Prismatic joint: the slider rows, then the rotation lock (row r + 2) where it is kept.
+template <class Rows>
+void prismatic_position(const Model& m, const Constraint::Prismatic& c, int r,
+                        const Eigen::Ref<const VectorXd>& q0, Eigen::Ref<VectorXd> res,
+                        Rows& rows) {
+  slot_position(c, r, q0, res, rows);
   if (c.lock_position) {
     res[r + 2] = wrap_angle(theta(m, c.body2, q0) - theta(m, c.body1, q0) - c.lock_angle);
     theta_entries(rows, m, q0, r + 2, c.body2, 1);
@@ -64,11 +86,10 @@ void prismatic_position(const Model& m, const Constraint& c, const Eigen::Ref<co
 }
 
 template <class Rows>
-void prismatic_velocity(const Model& m, const Constraint& c, const Eigen::Ref<const VectorXd>& q0,
-                        Eigen::Ref<VectorXd> rhs, Rows& rows) {
-  const int r = c.row1;
-  prismatic_entries(c, slider_axis(c, q0), r, rows);
-  rhs[r] = rhs[r + 1] = 0;
+void prismatic_velocity(const Model& m, const Constraint::Prismatic& c, int r,
+                        const Eigen::Ref<const VectorXd>& q0, Eigen::Ref<VectorXd> rhs,
+                        Rows& rows) {
+  slot_velocity(c, r, q0, rhs, rows);
   if (c.lock_velocity) {
     rows.var(r + 2, ref_w(m, c.w2), 1);
     rows.var(r + 2, ref_w(m, c.w1), -1);
@@ -76,12 +97,9 @@ void prismatic_velocity(const Model& m, const Constraint& c, const Eigen::Ref<co
   }
 }
 
-inline void prismatic_acceleration(const Constraint& c, const Eigen::Ref<const VectorXd>& q1,
-                                   Eigen::Ref<VectorXd> rhs) {
-  const int r = c.row1;
-  const Vec2 e = (2 * q1[c.q] / c.length) * (node_velocity(c.j, q1) - node_velocity(c.i, q1));
-  rhs[r] = e.x();
-  rhs[r + 1] = e.y();
+inline void prismatic_acceleration(const Constraint::Prismatic& c, int r,
+                                   const Eigen::Ref<const VectorXd>& q1, Eigen::Ref<VectorXd> rhs) {
+  slot_acceleration(c, r, q1, rhs);
   if (c.lock_velocity) rhs[r + 2] = 0;
 }
 

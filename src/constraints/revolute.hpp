@@ -20,15 +20,14 @@ namespace mo2d::detail {
 
 // The entries of d psi / d q0 = A, from row r.
 template <class Rows>
-void revolute_entries(const Constraint& c, int r, Rows& rows) {
+void revolute_entries(const Constraint::Revolute& c, int r, Rows& rows) {
   point_entries(rows, r, c.b, 1);
   point_entries(rows, r, c.a, -1);
 }
 
 template <class Rows>
-void revolute_position(const Constraint& c, const Eigen::Ref<const VectorXd>& q0,
+void revolute_position(const Constraint::Revolute& c, int r, const Eigen::Ref<const VectorXd>& q0,
                        Eigen::Ref<VectorXd> res, Rows& rows) {
-  const int r = c.row0;
   const Vec2 e = node_position(c.b, q0) - node_position(c.a, q0);
   res[r] = e.x();
   res[r + 1] = e.y();
@@ -36,14 +35,13 @@ void revolute_position(const Constraint& c, const Eigen::Ref<const VectorXd>& q0
 }
 
 template <class Rows>
-void revolute_velocity(const Constraint& c, Eigen::Ref<VectorXd> rhs, Rows& rows) {
-  const int r = c.row1;
+void revolute_velocity(const Constraint::Revolute& c, int r, Eigen::Ref<VectorXd> rhs, Rows& rows) {
   revolute_entries(c, r, rows);
   rhs[r] = rhs[r + 1] = 0;
 }
 
-inline void revolute_acceleration(const Constraint& c, Eigen::Ref<VectorXd> rhs) {
-  rhs[c.row1] = rhs[c.row1 + 1] = 0;
+inline void revolute_acceleration(int r, Eigen::Ref<VectorXd> rhs) {
+  rhs[r] = rhs[r + 1] = 0;
 }
 
 }  // namespace mo2d::detail

@@ -26,9 +26,8 @@
 namespace mo2d::detail {
 
 template <class Rows>
-void rigid_position(const Model& m, const Constraint& c, const Eigen::Ref<const VectorXd>& q0,
-                    Eigen::Ref<VectorXd> res, Rows& rows) {
-  const int r = c.row0;
+void rigid_position(const Model& m, const Constraint::Rigid& c, int r,
+                    const Eigen::Ref<const VectorXd>& q0, Eigen::Ref<VectorXd> res, Rows& rows) {
   const Body& b = m.bodies[c.body];
   const Vec2 p0 = node_position(b.nodes[0], q0);
   const Vec2 d = node_position(b.nodes[1], q0) - p0;
@@ -50,9 +49,8 @@ void rigid_position(const Model& m, const Constraint& c, const Eigen::Ref<const 
 }
 
 template <class Rows>
-void rigid_velocity(const Model& m, const Constraint& c, const Eigen::Ref<const VectorXd>& q0,
-                    Eigen::Ref<VectorXd> rhs, Rows& rows) {
-  const int r = c.row1;
+void rigid_velocity(const Model& m, const Constraint::Rigid& c, int r,
+                    const Eigen::Ref<const VectorXd>& q0, Eigen::Ref<VectorXd> rhs, Rows& rows) {
   const Body& b = m.bodies[c.body];
   const Vec2 p0 = node_position(b.nodes[0], q0);
   const VarRef w = ref_w(m, b.omega);
@@ -67,9 +65,8 @@ void rigid_velocity(const Model& m, const Constraint& c, const Eigen::Ref<const 
   }
 }
 
-inline void rigid_acceleration(const Model& m, const Constraint& c,
+inline void rigid_acceleration(const Model& m, const Constraint::Rigid& c, int r,
                                const Eigen::Ref<const VectorXd>& q1, Eigen::Ref<VectorXd> rhs) {
-  const int r = c.row1;
   const Body& b = m.bodies[c.body];
   const double w = omega_value(b.omega, q1);
   const Vec2 v0 = node_velocity(b.nodes[0], q1);

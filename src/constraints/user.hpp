@@ -23,14 +23,15 @@ namespace mo2d::detail {
 using UserArgs = std::array<Jet, kMaxUserArgs>;
 
 // x_k = q0[args[k]] as constants (no direction yet).
-inline void user_args_at(const Constraint& c, const Eigen::Ref<const VectorXd>& q0, UserArgs& x) {
-  const int n = static_cast<int>(c.args.size());
-  for (int k = 0; k < n; ++k) x[k] = Jet(q0[c.args[k].var]);
+inline void user_args_at(const std::vector<VarRef>& args, const Eigen::Ref<const VectorXd>& q0,
+                         UserArgs& x) {
+  const int n = static_cast<int>(args.size());
+  for (int k = 0; k < n; ++k) x[k] = Jet(q0[args[k].var]);
 }
 
 // The entries of psi_x = d psi / d q0 = A, into row r (x is left as it came).
 template <class Rows>
-void user_psi_entries(const Constraint& c, UserArgs& x, double t, int r, Rows& rows) {
+void user_psi_entries(const Constraint::UserPosition& c, UserArgs& x, double t, int r, Rows& rows) {
   const int n = static_cast<int>(c.args.size());
   const std::span<const Jet> xs(x.data(), n);
   for (int k = 0; k < n; ++k) {
@@ -41,39 +42,41 @@ void user_psi_entries(const Constraint& c, UserArgs& x, double t, int r, Rows& r
 }
 
 template <class Rows>
-void user_psi_position(const Constraint& c, const Eigen::Ref<const VectorXd>& q0, double t,
-                       Eigen::Ref<VectorXd> res, Rows& rows) {
+void user_psi_position(const Constraint::UserPosition& c, int r,
+                       const Eigen::Ref<const VectorXd>& q0, double t, Eigen::Ref<VectorXd> res,
+                       Rows& rows) {
   UserArgs x;
-  user_args_at(c, q0, x);
-  res[c.row0] = c.psi(std::span<const Jet>(x.data(), c.args.size()), Jet(t)).v;
-  user_psi_entries(c, x, t, c.row0, rows);
+  user_args_at(c.args, q0, x);
+  res[r] = c.psi(std::span<const Jet>(x.data(), c.args.size()), Jet(t)).v;
+  user_psi_entries(c, x, t, r, rows);
 }
 
 template <class Rows>
-void user_psi_velocity(const Constraint& c, const Eigen::Ref<const VectorXd>& q0, double t,
-                       Eigen::Ref<VectorXd> rhs, Rows& rows) {
+void user_psi_velocity(const Constraint::UserPosition& c, int r,
+                       const Eigen::Ref<const VectorXd>& q0, double t, Eigen::Ref<VectorXd> rhs,
+                       Rows& rows) {
   UserArgs x;
-  user_args_at(c, q0, x);
-  user_psi_entries(c, x, t, c.row1, rows);
-  rhs[c.row1] = -c.psi(std::span<const Jet>(x.data(), c.args.size()), Jet(t, 1, 0)).d;
+  user_args_at(c.args, q0, x);
+  user_psi_entries(c, x, t, r, rows);
+  rhs[r] = -c.psi(std::span<const Jet>(x.data(), c.args.size()), Jet(t, 1, 0)).d;
 }
 
-inline void user_psi_acceleration(const Constraint& c, const Eigen::Ref<const VectorXd>& q0,
+inline void user_psi_acceleration(const Constraint::UserPosition& c, int r,
+                                  const Eigen::Ref<const VectorXd>& q0,
                                   const Eigen::Ref<const VectorXd>& q1, double t,
                                   Eigen::Ref<VectorXd> rhs) {
   UserArgs x;
   const int n = static_cast<int>(c.args.size());
   for (int k = 0; k < n; ++k) x[k] = Jet(q0[c.args[k].var], q1[c.args[k].var], 0);
-  rhs[c.row1] = -c.psi(std::span<const Jet>(x.data(), n), Jet(t, 1, 0)).dd;
+  rhs[r] = -c.psi(std::span<const Jet>(x.data(), n), Jet(t, 1, 0)).dd;
 }
 
 template <class Rows>
-void user_g_velocity(const Constraint& c, const Eigen::Ref<const VectorXd>& q0, double t,
-                     Eigen::Ref<VectorXd> rhs, Rows& rows) {
-  const int r = c.row1;
+void user_g_velocity(const Constraint::UserVelocity& c, int r, const Eigen::Ref<const VectorXd>& q0,
+                     double t, Eigen::Ref<VectorXd> rhs, Rows& rows) {
   UserArgs x, v;
   const int nx = static_cast<int>(c.args.size()), nv = static_cast<int>(c.rates.size());
-  user_args_at(c, q0, x);
+  user_args_at(c.args, q0, x);
   for (int k = 0; k < nv; ++k) v[k] = Jet(0.0);
   const std::span<const Jet> xs(x.data(), nx), vs(v.data(), nv);
   rhs[r] = -c.g(xs, vs, Jet(t)).v;
@@ -84,14 +87,15 @@ void user_g_velocity(const Constraint& c, const Eigen::Ref<const VectorXd>& q0, 
   }
 }
 
-inline void user_g_acceleration(const Constraint& c, const Eigen::Ref<const VectorXd>& q0,
+inline void user_g_acceleration(const Constraint::UserVelocity& c, int r,
+                                const Eigen::Ref<const VectorXd>& q0,
                                 const Eigen::Ref<const VectorXd>& q1, double t,
                                 Eigen::Ref<VectorXd> rhs) {
   UserArgs x, v;
   const int nx = static_cast<int>(c.args.size()), nv = static_cast<int>(c.rates.size());
   for (int k = 0; k < nx; ++k) x[k] = Jet(q0[c.args[k].var], q1[c.args[k].var], 0);
   for (int k = 0; k < nv; ++k) v[k] = Jet(c.rates[k].var < 0 ? 0.0 : q1[c.rates[k].var]);
-  rhs[c.row1] =
+  rhs[r] =
       -c.g(std::span<const Jet>(x.data(), nx), std::span<const Jet>(v.data(), nv), Jet(t, 1, 0)).d;
 }
 

@@ -154,7 +154,7 @@ void run_cvode(const Model& m, ForwardData& d, const State& s0, const ForwardOpt
   std::vector<int> terms = {kInputWork, kDissipated};
   if (!m.forces.empty() || !m.torques.empty()) terms.push_back(kLoadWork);
   for (const Constraint& k : m.constraints)
-    if (k.kind == ConstraintKind::user_position || k.kind == ConstraintKind::user_velocity) {
+    if (k.kind() == ConstraintKind::user_position || k.kind() == ConstraintKind::user_velocity) {
       terms.push_back(kConstraintWork);
       break;
     }

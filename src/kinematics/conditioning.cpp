@@ -67,8 +67,10 @@ VectorXd column_scaling(const Model& m) {
     d[b.omega.var] = set[b.omega.var] ? std::min(d[b.omega.var], 1 / l) : 1 / l;
     set[b.omega.var] = true;
   }
-  for (const auto& c : m.constraints) {
-    if (c.kind != ConstraintKind::coordinate) continue;
+  for (const auto& k : m.constraints) {
+    const auto* coordinate = std::get_if<Constraint::Coordinate>(&k.def);
+    if (!coordinate) continue;
+    const Constraint::Coordinate& c = *coordinate;
     double s = 0;
     for (const auto& [ref, w] : c.rate_terms)
       if (ref.var >= 0 && ref.var != c.coord) s = std::max(s, std::abs(w) * d[ref.var]);

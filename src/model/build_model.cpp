@@ -23,10 +23,11 @@ void check_input_labels(const Model& m) {
 void assemble_model(Model& m, const Eigen::VectorXd& q0, const BuildOptions& options) {
   m.q0 = q0;
   m.holonomic = true;
-  for (const auto& c : m.constraints)
-    if ((c.kind == ConstraintKind::coordinate && !c.holonomic) ||
-        c.kind == ConstraintKind::user_velocity)
+  for (const auto& c : m.constraints) {
+    const auto* coordinate = std::get_if<Constraint::Coordinate>(&c.def);
+    if ((coordinate && !coordinate->holonomic) || c.kind() == ConstraintKind::user_velocity)
       m.holonomic = false;
+  }
   m.dof = m.n1 - m.m1;
   if (!options.assemble) return;
   check_memory("building '" + m.name + "' (assembly and rank checks)",

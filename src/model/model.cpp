@@ -3,6 +3,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <type_traits>
+#include <variant>
 
 #include "constraints/constraints.hpp"
 #include "mo2d/error.hpp"
@@ -11,6 +13,47 @@
 namespace mo2d {
 
 using detail::perp;
+
+namespace {
+template <class T>
+constexpr bool in_kind_order() {
+  return std::is_same_v<std::variant_alternative_t<static_cast<size_t>(T::kind), Constraint::Def>,
+                        T>;
+}
+static_assert(in_kind_order<Constraint::Rigid>() && in_kind_order<Constraint::Revolute>() &&
+                  in_kind_order<Constraint::Prismatic>() && in_kind_order<Constraint::Slider>() &&
+                  in_kind_order<Constraint::Coordinate>() &&
+                  in_kind_order<Constraint::UserPosition>() &&
+                  in_kind_order<Constraint::UserVelocity>() &&
+                  std::variant_size_v<Constraint::Def> == 7,
+              "Constraint::Def lists one struct per ConstraintKind, in the order of the enum");
+}  // namespace
+
+const char* constraint_kind_name(ConstraintKind k) {
+  switch (k) {
+    case ConstraintKind::rigid:
+      return "rigid body";
+    case ConstraintKind::revolute:
+      return "revolute";
+    case ConstraintKind::prismatic:
+      return "prismatic";
+    case ConstraintKind::slot:
+      return "pin-in-slot";
+    case ConstraintKind::coordinate:
+      return "coordinate";
+    case ConstraintKind::user_position:
+      return "user (position)";
+    case ConstraintKind::user_velocity:
+      return "user (velocity)";
+  }
+  return "?";
+}
+
+void Constraint::wrong_kind(ConstraintKind wanted) const {
+  throw Error("constraint '" + name + "' is a " + constraint_kind_name(kind()) +
+                  " constraint, not a " + constraint_kind_name(wanted) + " one",
+              name);
+}
 
 std::vector<std::string> Model::input_labels() const {
   std::vector<std::string> out;

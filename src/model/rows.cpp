@@ -44,11 +44,7 @@ void add_rigid_rows(Model& m) {
     const Body& b = m.bodies[bi];
     const int n = static_cast<int>(b.nodes.size());
     if (n < 2) continue;
-    Constraint c;
-    c.kind = ConstraintKind::rigid;
-    c.name = b.name;
-    c.owner = b.owner;
-    c.body = bi;
+    Constraint c{.name = b.name, .owner = b.owner, .def = Constraint::Rigid{bi}};
     std::vector<std::string> l0{".rigid(d01)"}, l1;
     for (int k = 2; k < n; ++k) {
       l0.push_back(".rigid(" + std::to_string(k) + "x)");
@@ -89,14 +85,12 @@ void add_revolute_rows(const Flat& flat, const Elements& el, const Reduced& red,
     m.reactions.push_back({name + ".Fx", -1, -1});
     m.reactions.push_back({name + ".Fy", -1, -1});
     if (!red.revolute_merged[k]) {
-      Constraint c;
-      c.kind = ConstraintKind::revolute;
-      c.name = name;
-      c.owner = j.owner;
-      c.a = node_ref(m, el, ea);
-      c.b = node_ref(m, el, eb);
-      c.body1 = el.body[ea];
-      c.body2 = el.body[eb];
+      Constraint::Revolute d;
+      d.a = node_ref(m, el, ea);
+      d.b = node_ref(m, el, eb);
+      d.body1 = el.body[ea];
+      d.body2 = el.body[eb];
+      Constraint c{.name = name, .owner = j.owner, .def = d};
       const int ci = add_constraint(m, std::move(c), 2, 2, {".x", ".y"}, {".vx", ".vy"});
       m.reactions[reaction].row = m.constraints[ci].row1;
       m.reactions[reaction + 1].row = m.constraints[ci].row1 + 1;
@@ -118,20 +112,16 @@ double initial_angle(const Model& m, int body) {
 }
 
 // The part of a prismatic joint or pin-in-slot that they share: the slider on its axis.
-Constraint axis_constraint(ConstraintKind kind, const std::string& name, int owner,
-                           const AxisJoint& p, int q, const Elements& el, const Model& m) {
-  Constraint c;
-  c.kind = kind;
-  c.name = name;
-  c.owner = owner;
-  c.i = node_ref(m, el, p.ei);
-  c.j = node_ref(m, el, p.ej);
-  c.s = node_ref(m, el, p.es);
-  c.q = q;
-  c.length = (el.position[p.ej] - el.position[p.ei]).norm();
-  c.body1 = p.body1;
-  c.body2 = p.body2;
-  return c;
+Constraint::Slider slider(const AxisJoint& p, int q, const Elements& el, const Model& m) {
+  Constraint::Slider d;
+  d.i = node_ref(m, el, p.ei);
+  d.j = node_ref(m, el, p.ej);
+  d.s = node_ref(m, el, p.es);
+  d.q = q;
+  d.length = (el.position[p.ej] - el.position[p.ei]).norm();
+  d.body1 = p.body1;
+  d.body2 = p.body2;
+  return d;
 }
 
 void add_prismatic_rows(const Flat& flat, const Elements& el, const Reduced& red,
@@ -140,21 +130,22 @@ void add_prismatic_rows(const Flat& flat, const Elements& el, const Reduced& red
     const auto& j = flat.prismatics[k];
     const AxisJoint& p = red.prismatics[k];
     const std::string name = j.prefix + j.def.name;
-    Constraint c =
-        axis_constraint(ConstraintKind::prismatic, name, j.owner, p, num.prismatic_q[k], el, m);
+    Constraint::Prismatic d;
+    static_cast<Constraint::Slider&>(d) = slider(p, num.prismatic_q[k], el, m);
     const bool oriented1 = p.body1 < 0 || m.bodies[p.body1].nodes.size() >= 2;
     const bool oriented2 = p.body2 < 0 || m.bodies[p.body2].nodes.size() >= 2;
-    c.lock_position = p.lock && oriented1 && oriented2;
-    c.lock_velocity = p.lock && !p.merged;
+    d.lock_position = p.lock && oriented1 && oriented2;
+    d.lock_velocity = p.lock && !p.merged;
     if (p.lock) {
-      c.w1 = p.body1 < 0 ? OmegaRef{} : m.bodies[p.body1].omega;
-      c.w2 = p.body2 < 0 ? OmegaRef{} : m.bodies[p.body2].omega;
+      d.w1 = p.body1 < 0 ? OmegaRef{} : m.bodies[p.body1].omega;
+      d.w2 = p.body2 < 0 ? OmegaRef{} : m.bodies[p.body2].omega;
     }
-    if (c.lock_position) c.lock_angle = initial_angle(m, p.body2) - initial_angle(m, p.body1);
+    if (d.lock_position) d.lock_angle = initial_angle(m, p.body2) - initial_angle(m, p.body1);
     std::vector<std::string> l0{".x", ".y"}, l1{".vx", ".vy"};
-    if (c.lock_position) l0.push_back(".angle");
-    if (c.lock_velocity) l1.push_back(".w");
-    const int nr0 = 2 + (c.lock_position ? 1 : 0), nr1 = 2 + (c.lock_velocity ? 1 : 0);
+    if (d.lock_position) l0.push_back(".angle");
+    if (d.lock_velocity) l1.push_back(".w");
+    const int nr0 = 2 + (d.lock_position ? 1 : 0), nr1 = 2 + (d.lock_velocity ? 1 : 0);
+    Constraint c{.name = name, .owner = j.owner, .def = std::move(d)};
     const int ci = add_constraint(m, std::move(c), nr0, nr1, l0, l1);
     const int reaction = m.n_reactions();
     m.reactions.push_back({name + ".Fx", m.constraints[ci].row1, -1});
@@ -173,7 +164,7 @@ void add_slot_rows(const Flat& flat, const Elements& el, const Reduced& red, con
     const auto& j = flat.slots[k];
     const AxisJoint& p = red.slots[k];
     const std::string name = j.prefix + j.def.name;
-    Constraint c = axis_constraint(ConstraintKind::slot, name, j.owner, p, num.slot_q[k], el, m);
+    Constraint c{.name = name, .owner = j.owner, .def = slider(p, num.slot_q[k], el, m)};
     const int ci = add_constraint(m, std::move(c), 2, 2, {".x", ".y"}, {".vx", ".vy"});
     m.reactions.push_back({name + ".Fx", m.constraints[ci].row1, -1});
     m.reactions.push_back({name + ".Fy", m.constraints[ci].row1 + 1, -1});
@@ -222,10 +213,7 @@ void add_coordinate_rows(const Flat& flat, Numbering& num, Model& m) {
     const std::string name = cd.prefix + cd.def.name;
     const std::string what = "coordinate '" + name + "'";
     if (cd.def.rate.empty()) throw Error(what + " has no rate terms", name);
-    Constraint c;
-    c.kind = ConstraintKind::coordinate;
-    c.name = name;
-    c.owner = cd.owner;
+    Constraint::Coordinate c;
     c.coord = num.coordinate_q[k];
     double implied = 0;
     for (const auto& [label, w] : cd.def.rate) {
@@ -255,8 +243,9 @@ void add_coordinate_rows(const Flat& flat, Numbering& num, Model& m) {
       throw Error(what + ": initial value is not finite", name);
     num.q0[c.coord] = cd.def.initial.value_or(implied);
     c.offset = num.q0[c.coord] - implied;
-    const bool hol = c.holonomic;
-    add_constraint(m, std::move(c), hol ? 1 : 0, 1, {""}, {".rate"});
+    const int nrow0 = c.holonomic ? 1 : 0;
+    add_constraint(m, Constraint{.name = name, .owner = cd.owner, .def = std::move(c)}, nrow0, 1,
+                   {""}, {".rate"});
   }
 }
 
@@ -267,13 +256,11 @@ void add_user_rows(const Flat& flat, Model& m) {
     if (!pc.def.psi) throw Error(what + " has no function", name);
     if (pc.def.args.size() > static_cast<size_t>(detail::kMaxUserArgs))
       throw Error(what + " has more than 32 arguments", name);
-    Constraint c;
-    c.kind = ConstraintKind::user_position;
-    c.name = name;
-    c.owner = pc.owner;
-    c.psi = pc.def.psi;
+    Constraint::UserPosition d;
+    d.psi = pc.def.psi;
     for (const auto& a : pc.def.args)
-      c.args.push_back(m.rate_refs[find_coordinate(m, pc.prefix, a, what)]);
+      d.args.push_back(m.rate_refs[find_coordinate(m, pc.prefix, a, what)]);
+    Constraint c{.name = name, .owner = pc.owner, .def = std::move(d)};
     const int ci = add_constraint(m, std::move(c), 1, 1, {""}, {".rate"});
     m.reactions.push_back({name + ".lambda", m.constraints[ci].row1, 1});
   }
@@ -284,15 +271,13 @@ void add_user_rows(const Flat& flat, Model& m) {
     if (vc.def.coords.size() > static_cast<size_t>(detail::kMaxUserArgs) ||
         vc.def.rates.size() > static_cast<size_t>(detail::kMaxUserArgs))
       throw Error(what + " has more than 32 arguments", name);
-    Constraint c;
-    c.kind = ConstraintKind::user_velocity;
-    c.name = name;
-    c.owner = vc.owner;
-    c.g = vc.def.g;
+    Constraint::UserVelocity d;
+    d.g = vc.def.g;
     for (const auto& a : vc.def.coords)
-      c.args.push_back(m.rate_refs[find_coordinate(m, vc.prefix, a, what)]);
+      d.args.push_back(m.rate_refs[find_coordinate(m, vc.prefix, a, what)]);
     for (const auto& a : vc.def.rates)
-      c.rates.push_back(m.rate_refs[find_rate(m, vc.prefix, a, what)]);
+      d.rates.push_back(m.rate_refs[find_rate(m, vc.prefix, a, what)]);
+    Constraint c{.name = name, .owner = vc.owner, .def = std::move(d)};
     const int ci = add_constraint(m, std::move(c), 0, 1, {}, {""});
     m.reactions.push_back({name + ".lambda", m.constraints[ci].row1, 1});
   }

@@ -107,3 +107,35 @@ TEST(Constraints, RheonomicUserConstraintDrivesThePendulum) {
     EXPECT_NEAR(res.q0(i, res.column("angle")), th.v, 1e-12);
   }
 }
+
+// Constraint::def holds one struct per kind: kind() follows it, slider() gives the axis of a
+// pin-in-slot, and as<T>() on another kind is an Error naming the constraint and both kinds.
+TEST(Constraints, OneStructPerKind) {
+  System s("rolling_disc");
+  s.add_ground_node("L", {-1, 0.15}).add_ground_node("R", {1, 0.15});
+  s.add_body({.name = "disc", .nodes = {{"C", {0, 0.15}}}, .mass = 2, .inertia = 0.03});
+  s.add_pin_in_slot(
+      {.name = "rail", .axis_from = "ground.L", .axis_to = "ground.R", .pin = "disc.C"});
+  s.add_constraint(VelocityConstraintDef{
+      .name = "roll",
+      .coords = {},
+      .rates = {"disc.C.vx", "disc.w"},
+      .g = [](std::span<const Jet>, std::span<const Jet> v, Jet) { return v[0] + 0.15 * v[1]; }});
+  const Model model = build_model(s);
+  ASSERT_EQ(model.constraints.size(), 2u);
+  const Constraint& rail = model.constraints[0];
+  const Constraint& roll = model.constraints[1];
+  EXPECT_EQ(rail.kind(), ConstraintKind::slot);
+  EXPECT_EQ(roll.kind(), ConstraintKind::user_velocity);
+  ASSERT_NE(rail.slider(), nullptr);
+  EXPECT_DOUBLE_EQ(rail.slider()->length, 2.0);
+  EXPECT_EQ(roll.slider(), nullptr);
+  EXPECT_EQ(roll.as<Constraint::UserVelocity>().rates.size(), 2u);
+  try {
+    (void)rail.as<Constraint::Prismatic>();
+    FAIL() << "as<Prismatic> on a pin-in-slot did not throw";
+  } catch (const Error& e) {
+    EXPECT_STREQ(e.what(), "constraint 'rail' is a pin-in-slot constraint, not a prismatic one");
+    EXPECT_EQ(e.element(), "rail");
+  }
+}
