@@ -18,9 +18,9 @@ cmake --build "$work/build" -j"$(nproc)" --target mo2d_tests >/dev/null
 
 # name | file | sed expression
 mutations=(
-  "actuator sign flipped|src/model/build_model.cpp|s/std::pair{b2, 1.0}, std::pair{b1, -1.0}/std::pair{b2, -1.0}, std::pair{b1, 1.0}/"
-  "centre of mass moved (gamma + 0.1)|src/model/build_model.cpp|s/b.gamma = com.gamma;/b.gamma = com.gamma + 0.1;/"
-  "centre of mass at the other node|src/model/build_model.cpp|s/b.ci = local(com.node_i);\$/b.ci = local(com.node_i); if (n >= 2) b.ci = n - 1 - b.ci;/"
+  "actuator sign flipped|src/model/rows.cpp|s/std::pair{body2, 1.0}, std::pair{body1, -1.0}/std::pair{body2, -1.0}, std::pair{body1, 1.0}/"
+  "centre of mass moved (gamma + 0.1)|src/model/validate.cpp|s/b.gamma = com.gamma;/b.gamma = com.gamma + 0.1;/"
+  "centre of mass at the other node|src/model/validate.cpp|s/b.ci = com_node(d, com.node_i);\$/b.ci = com_node(d, com.node_i); if (n >= 2) b.ci = n - 1 - b.ci;/"
   "inertia +5 %|src/dynamics/dynamics.cpp|s/l\[b.slots() - 1\] = b.inertia \*/l[b.slots() - 1] = 1.05 * b.inertia */"
   "gravity sign flipped|src/dynamics/dynamics.cpp|s/b.mass \* m.gravity/-b.mass * m.gravity/"
   "rigid-body acceleration bias sign|src/constraints/rigid.hpp|s/const Vec2 e = w \* perp(node_velocity/const Vec2 e = -w * perp(node_velocity/"
@@ -29,10 +29,10 @@ mutations=(
   # a body point evaluated with the wrong helper (trust issue, item 1): positions through the
   # velocity helper, which puts a node joined to the ground at the origin
   "spring point position through the velocity helper|src/dynamics/dynamics.cpp|s/return {local_position_of_point(b, q0, bp.ci/return {local_velocity_of_point(b, q0, bp.ci/"
-  "centre of mass position through the velocity helper|src/model/build_model.cpp|s/const Vec2 d = node_position(b.nodes\[b.cj\], q0) - pi;/const Vec2 d = node_velocity(b.nodes[b.cj], q0) - pi;/"
+  "centre of mass position through the velocity helper|src/model/model.cpp|s/const Vec2 d = node_position(b.nodes\[b.cj\], q0) - pi;/const Vec2 d = node_velocity(b.nodes[b.cj], q0) - pi;/"
   # a load's work left out of the energy balance (trust issue, item 6)
-  "load work left out of the energy balance|src/forward/forward_data.cpp|s/rates\[kLoadWork\] = load_power(d.m, q0, q1, t);/rates[kLoadWork] = 0;/"
-  "damper dissipation left out of the energy balance|src/forward/forward_data.cpp|s/rates\[kDissipated\] = damping_power(d.m, q0, q1);/rates[kDissipated] = 0;/"
+  "load work left out of the energy balance|src/forward/recorder.cpp|s/rates\[kLoadWork\] = load_power(d.m, q0, q1, t);/rates[kLoadWork] = 0;/"
+  "damper dissipation left out of the energy balance|src/forward/recorder.cpp|s/rates\[kDissipated\] = damping_power(d.m, q0, q1);/rates[kDissipated] = 0;/"
   "spring tension sign (on its first point)|src/dynamics/dynamics.cpp|s/s.a.rho, T \* st.e,/s.a.rho, -T * st.e,/"
 )
 status=0
