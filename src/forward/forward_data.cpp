@@ -23,13 +23,6 @@ namespace mo2d {
 
 namespace detail {
 
-std::string fmt(double v) {
-  std::ostringstream s;
-  s.precision(6);
-  s << v;
-  return s.str();
-}
-
 VectorXd regularized_normal_solve(const MatrixXd& J, const VectorXd& x, double eps) {
   MatrixXd G = J * J.transpose();
   G.diagonal().array() += eps * std::max(1.0, G.diagonal().maxCoeff());

@@ -7,11 +7,10 @@
 
 #include "mo2d/forward.hpp"
 #include "mo2d/forward_data.hpp"
+#include "run/format.hpp"
 #include "run/run_budget.hpp"
 
 namespace mo2d::detail {
-
-std::string fmt(double v);  // 6 significant digits, for messages
 
 // y = (J J^T + eps * max(1, max diag(J J^T)) I)^-1 J x: the least-squares multipliers of
 // J^T y = x, regularized where J loses rank (eps relative to the largest diagonal entry).

@@ -68,14 +68,6 @@ std::string prescribed_values(const InverseData& d) {
   return s;
 }
 
-// Dense matrices of the inverse workspace (J, K and their factorizations, S, B) and the results.
-double inverse_memory_bytes(const Model& m, const InverseOptions& o) {
-  const double n0 = m.n0, n1 = m.n1, m0 = m.m0;
-  const double dense = 2 * m0 * n0 + 3 * n1 * n1 + 2 * n1 * m.dof + n1 * m.n_inputs();
-  const double columns = n0 + 2 * n1 + m.n_inputs() + m.n_reactions() + 4;
-  return 8 * (dense + static_cast<double>(o.samples) * columns);
-}
-
 // The first non-finite result of a sample (positions, velocities, accelerations, efforts,
 // reactions): an Error naming it and the time.
 void check_finite_sample(const Model& m, const InverseData& d, double t) {
@@ -103,113 +95,6 @@ void check_finite_sample(const Model& m, const InverseData& d, double t) {
 }
 
 }  // namespace
-
-void check_inverse_options(const Model& m, const InverseOptions& o) {
-  if (!(o.samples >= 1))
-    throw Error("inverse dynamics: samples must be >= 1 (got " + std::to_string(o.samples) + ")",
-                "samples");
-  if (o.t1 < o.t0)
-    throw Error("inverse dynamics: need t0 <= t1 (t0 = " + fmt(o.t0) + ", t1 = " + fmt(o.t1) + ")",
-                "t1");
-  check_time_grid("inverse dynamics", o.t0, o.t1, o.samples);
-  if (o.samples > 1 && !(o.t1 > o.t0))
-    throw Error("inverse dynamics: " + std::to_string(o.samples) + " samples need a duration > 0",
-                "t1");
-  if (std::isnan(o.max_seconds))
-    throw Error("inverse dynamics: max_seconds is not a number", "max_seconds");
-  check_magnitudes(m);
-  check_memory("inverse dynamics of '" + m.name + "' (" + std::to_string(o.samples) + " samples)",
-               inverse_memory_bytes(m, o), o.max_memory, model_sizes(m), "max_memory");
-}
-
-InverseData::InverseData(const Model& m, std::span<const Prescribed> prescribed,
-                         const InverseOptions& o)
-    : options(o) {
-  if (static_cast<int>(prescribed.size()) != m.dof) {
-    std::string list;
-    for (const auto& p : prescribed) list += (list.empty() ? "" : ", ") + p.coordinate;
-    throw Error("'" + m.name + "' has " + std::to_string(m.dof) + " degree(s) of freedom but " +
-                    std::to_string(prescribed.size()) + " coordinate(s) are prescribed" +
-                    (list.empty() ? "" : " (" + list + ")"),
-                m.name);
-  }
-  if (m.n_inputs() != m.dof) {
-    std::string list;
-    for (const auto& in : m.inputs) list += (list.empty() ? "" : ", ") + in.label;
-    throw Error("inverse dynamics needs one actuator per degree of freedom: '" + m.name + "' has " +
-                    std::to_string(m.dof) + " DOF and " + std::to_string(m.n_inputs()) +
-                    " actuated input(s)" + (list.empty() ? "" : " (" + list + ")"),
-                m.name);
-  }
-  if (m.n0 - m.m0 != m.dof)
-    throw Error("inverse dynamics of '" + m.name +
-                    "' needs positions determined by the prescribed "
-                    "coordinates, but its position-level DOF (" +
-                    std::to_string(m.n0 - m.m0) + ") differs from its velocity-level DOF (" +
-                    std::to_string(m.dof) +
-                    "): a coordinate or constraint given only at velocity level (non-holonomic) "
-                    "leaves positions undetermined",
-                m.name);
-  check_inverse_options(m, o);
-  colmap.assign(m.n0, 0);
-  for (const auto& p : prescribed) {
-    const int k = m.coordinate(p.coordinate);
-    if (!p.motion)
-      throw Error("prescribed coordinate '" + p.coordinate + "' has no motion", p.coordinate);
-    if (colmap[k] < 0)
-      throw Error("coordinate '" + p.coordinate + "' is prescribed twice", p.coordinate);
-    colmap[k] = -1;
-    p_index.push_back(k);
-    p_motion.push_back(p.motion);
-    p_labels.push_back(p.coordinate);
-  }
-  int nfree = 0;
-  for (int& c : colmap) c = c < 0 ? -1 : nfree++;
-  const int dof = m.dof, nu = m.n_inputs();
-  q0 = m.q0;
-  q1 = VectorXd::Zero(m.n1);
-  a1 = VectorXd::Zero(m.n1);
-  u = VectorXd::Zero(nu);
-  lambda = VectorXd::Zero(m.m1);
-  reactions = VectorXd::Zero(m.n_reactions());
-  s = s_dot = s_ddot = VectorXd::Zero(dof);
-  psi = trial = VectorXd::Zero(m.m0);
-  q0_trial = VectorXd::Zero(m.n0);
-  b = c = VectorXd::Zero(m.m1);
-  rhs = w = f = z = VectorXd::Zero(m.n1);
-  local = local_a = VectorXd::Zero(m.n_slots);
-  J = MatrixXd::Zero(m.m0, nfree);
-  K = MatrixXd::Zero(m.n1, m.n1);
-  B = input_matrix(m);
-  S = MatrixXd::Zero(m.n1, dof);
-  CtB = MatrixXd::Zero(dof, nu);
-  Ctw = VectorXd::Zero(dof);
-  row_residual = VectorXd::Zero(m.m1);
-  lu_pos = std::make_unique<detail::SmallLU>(nfree);
-  lu_K = std::make_unique<detail::SmallLU>(m.n1);
-  lu_u = Eigen::PartialPivLU<MatrixXd>(dof);
-  edge_force.assign(detail::merge_edge_layout(m, edge_offset), 0.0);
-  // size the entry list with a dry run (the pattern is fixed)
-  MatrixXd A(m.m1, m.n1);
-  VectorXd bb(m.m1);
-  A.setZero();
-  detail::SlotRecordSink sink{A, m, entries};
-  for (const auto& k : m.constraints) detail::velocity_rows(m, k, m.q0, o.t0, bb, sink);
-  entries.reserve(entries.size() * 2 + 16);
-  entries.clear();
-  Ks = MatrixXd::Zero(m.n1, m.n1);
-  col_scale = column_scaling(m);
-  pos_scale = col_scale.head(m.n0);
-  k_row = VectorXd::Ones(m.n1);
-  q0_pred = VectorXd::Zero(m.n0);
-  q0_prev = q1_prev = a1_prev = VectorXd::Zero(0);
-  q0_prev = q0_good = VectorXd::Zero(m.n0);
-  s_good = VectorXd::Zero(dof);
-  q1_prev = VectorXd::Zero(m.n1);
-  a1_prev = VectorXd::Zero(m.n1);
-}
-
-InverseData::~InverseData() = default;
 
 namespace {
 
@@ -346,12 +231,18 @@ void check_singular_passage(const Model& m, InverseData& d, double t) {
   }
 }
 
-}  // namespace
+// ---- the stages of one sample (inverse_dynamics_sample) -------------------------------------
 
-void inverse_dynamics_sample(const Model& m, InverseData& d, double t) {
-  const InverseOptions& o = d.options;
-  d.t = t;
-  (void)o;
+// x <- K^-1 x through the dimensionless factorization Ks = R K D: K^-1 = D Ks^-1 R.
+template <class X>
+void solve_K(InverseData& d, X&& x) {
+  x.array() *= d.k_row.array();
+  d.lu_K->solve_in_place(x);
+  x.array() *= d.col_scale.array();
+}
+
+// The prescribed values s, s_dot, s_ddot at t (exact derivatives of the motions through Jet).
+void prescribed_motion(const Model& m, InverseData& d, double t) {
   const int dof = m.dof;
   // prescribed motion, exact derivatives
   for (int k = 0; k < dof; ++k) {
@@ -363,6 +254,11 @@ void inverse_dynamics_sample(const Model& m, InverseData& d, double t) {
     d.s_dot[k] = s.d;
     d.s_ddot[k] = s.dd;
   }
+}
+
+// Positions: Newton from a second-order prediction, else continuation (throws if unreachable).
+void sample_positions(const Model& m, InverseData& d, double t) {
+  const int dof = m.dof;
   // ---- positions: Newton from a second-order prediction; if that fails, continuation from the
   // last solved configuration (the prescribed values move there in steps, halved on failure)
   d.q0_good = d.q0;  // previous sample, or the model's initial configuration
@@ -397,9 +293,11 @@ void inverse_dynamics_sample(const Model& m, InverseData& d, double t) {
       throw_unreachable(m, d, t, lambda);
     }
   }
+}
 
-  if (d.has_previous) check_branch(m, d, t);
-
+// K = [A; E] with the velocity rows b, factored in dimensionless form (throws if singular).
+void factor_velocity_system(const Model& m, InverseData& d, double t) {
+  const int dof = m.dof;
   // ---- velocities and accelerations: K = [A; E]
   d.K.setZero();
   d.entries.clear();
@@ -421,12 +319,7 @@ void inverse_dynamics_sample(const Model& m, InverseData& d, double t) {
   for (int k = 0; k < dof; ++k) d.k_row[m.m1 + k] = 1 / d.col_scale[d.p_index[k]];
   d.Ks.noalias() = d.k_row.asDiagonal() * d.K * d.col_scale.asDiagonal();
   d.pivot_ratio = d.lu_K->compute(d.Ks);
-  auto solve_K = [&](auto&& x) {
-    x.array() *= d.k_row.array();
-    d.lu_K->solve_in_place(x);
-    x.array() *= d.col_scale.array();
-  };
-  if (d.pivot_ratio < o.singular_pivot_ratio) {
+  if (d.pivot_ratio < d.options.singular_pivot_ratio) {
     const std::string vars = null_variables(d.Ks, m.rate_labels);
     if (!d.has_previous)
       throw Error("the prescribed coordinates (" + prescribed_values(d) +
@@ -440,23 +333,32 @@ void inverse_dynamics_sample(const Model& m, InverseData& d, double t) {
                     vars + ")",
                 vars.substr(0, vars.find(',')), t);
   }
-  check_singular_passage(m, d, t);
+}
+
+// q1 = K^-1 [b; s_dot], a1 = K^-1 [c; s_ddot] and their residuals.
+void velocities_and_accelerations(const Model& m, InverseData& d, double t) {
+  const int dof = m.dof;
   d.rhs.head(m.m1) = d.b;
   d.rhs.tail(dof) = d.s_dot;
   d.q1 = d.rhs;
-  solve_K(d.q1);
+  solve_K(d, d.q1);
   acceleration_rhs(m, d.q0, d.q1, t, d.c);
   check_finite_rows(d.c, m.velocity_row_labels, "acceleration", t);
   d.rhs.head(m.m1) = d.c;
   d.rhs.tail(dof) = d.s_ddot;
   d.a1 = d.rhs;
-  solve_K(d.a1);
+  solve_K(d, d.a1);
   const auto A = d.K.topRows(m.m1);
   d.row_residual.noalias() = A * d.q1;
   d.residual_velocity = m.m1 ? (d.row_residual - d.b).lpNorm<Eigen::Infinity>() : 0.0;
   d.row_residual.noalias() = A * d.a1;
   d.residual_acceleration = m.m1 ? (d.row_residual - d.c).lpNorm<Eigen::Infinity>() : 0.0;
+}
 
+// Efforts and multipliers (Theorem 4.3).
+void efforts_and_multipliers(const Model& m, InverseData& d, double t) {
+  const int dof = m.dof;
+  const auto A = d.K.topRows(m.m1);
   // ---- efforts: C^T (M a1 - f - B u) = 0, C = K^-1 [0; I]  (Theorem 4.3, eq. 2.29)
   body_inertia(m, d.a1, d.local_a);
   body_applied(m, d.q0, d.q1, t, d.local);
@@ -469,12 +371,12 @@ void inverse_dynamics_sample(const Model& m, InverseData& d, double t) {
     auto col = d.S.col(k);
     col.setZero();
     col[m.m1 + k] = 1.0;
-    solve_K(col);
+    solve_K(d, col);
   }
-  if (o.complement == ComplementMethod::recursive) d.S = recursive_complement(m, A);
+  if (d.options.complement == ComplementMethod::recursive) d.S = recursive_complement(m, A);
   d.CtB.noalias() = d.S.transpose() * d.B;
   d.lu_u.compute(d.CtB);
-  if (pivot_ratio(d.lu_u) < o.singular_pivot_ratio)
+  if (pivot_ratio(d.lu_u) < d.options.singular_pivot_ratio)
     throw Error("the actuators cannot produce the prescribed motion at t = " + fmt(t) + " s (" +
                     prescribed_values(d) +
                     "): the inputs do not act on the prescribed coordinates (C^T B is singular)",
@@ -489,6 +391,19 @@ void inverse_dynamics_sample(const Model& m, InverseData& d, double t) {
   d.lu_K->solve_transpose_in_place(d.z);
   d.z.array() *= d.k_row.array();
   d.lambda = d.z.head(m.m1);
+}
+
+}  // namespace
+
+void inverse_dynamics_sample(const Model& m, InverseData& d, double t) {
+  d.t = t;
+  prescribed_motion(m, d, t);
+  sample_positions(m, d, t);
+  if (d.has_previous) check_branch(m, d, t);
+  factor_velocity_system(m, d, t);
+  check_singular_passage(m, d, t);
+  velocities_and_accelerations(m, d, t);
+  efforts_and_multipliers(m, d, t);
 
   // ---- reactions: direct from multipliers, or split at eliminated joints
   detail::joint_reactions(m, d.entries, d.lambda, d.u, d.local_a, d.edge_force, d.edge_offset,
@@ -554,65 +469,6 @@ Trajectory inverse_dynamics(const Model& m, std::span<const Prescribed> prescrib
   r.stats.warnings = d.warnings;
   r.stats.cpu_seconds = detail::cpu_seconds() - start;
   return r;
-}
-
-// ---- recursive orthogonal complement (Theorem 2.10) ---------------------------------------------
-namespace {
-
-MatrixXd null_space(const MatrixXd& Bm) {
-  const int n = static_cast<int>(Bm.cols());
-  if (Bm.rows() == 0) return MatrixXd::Identity(n, n);
-  Eigen::ColPivHouseholderQR<MatrixXd> qr(Bm.transpose());
-  qr.setThreshold(1e-10);
-  const int r = static_cast<int>(qr.rank());
-  const MatrixXd Q = qr.householderQ();
-  return Q.rightCols(n - r);
-}
-
-MatrixXd complement_of(const Model& m, const Eigen::Ref<const MatrixXd>& A, int node,
-                       std::vector<int>& vars) {
-  const TreeNode& tn = m.tree[node];
-  vars = tn.vars;
-  std::vector<MatrixXd> S_children;
-  std::vector<std::vector<int>> child_vars;
-  for (int ch : tn.children) {
-    std::vector<int> cv;
-    S_children.push_back(complement_of(m, A, ch, cv));
-    child_vars.push_back(std::move(cv));
-  }
-  int cols = static_cast<int>(tn.vars.size());
-  for (const auto& S : S_children) cols += static_cast<int>(S.cols());
-  for (const auto& cv : child_vars) vars.insert(vars.end(), cv.begin(), cv.end());
-  const int n = static_cast<int>(vars.size());
-  MatrixXd R = MatrixXd::Zero(n, cols);  // R = blockdiag(I, S_children)  (2.34)
-  const int own = static_cast<int>(tn.vars.size());
-  R.topLeftCorner(own, own).setIdentity();
-  int r0 = own, c0 = own;
-  for (const auto& S : S_children) {
-    R.block(r0, c0, S.rows(), S.cols()) = S;
-    r0 += static_cast<int>(S.rows());
-    c0 += static_cast<int>(S.cols());
-  }
-  MatrixXd Aown(tn.rows.size(), n);  // external constraints of this node
-  for (size_t i = 0; i < tn.rows.size(); ++i)
-    for (int j = 0; j < n; ++j) Aown(i, j) = A(tn.rows[i], vars[j]);
-  const MatrixXd C = null_space(Aown * R);  // B = A_ext R, C = null(B)
-  return R * C;                             // S = R C  (2.35)
-}
-
-}  // namespace
-
-MatrixXd recursive_complement(const Model& m, const Eigen::Ref<const MatrixXd>& A) {
-  if (m.reduction == Reduction::flat && m.tree.size() > 1)
-    throw Error("the recursive complement needs a model built with Reduction::subsystems or none",
-                m.name);
-  std::vector<int> vars;
-  const MatrixXd S = complement_of(m, A, 0, vars);
-  if (static_cast<int>(vars.size()) != m.n1)
-    throw Error("internal: subsystem tree does not cover all variables", m.name);
-  MatrixXd out(m.n1, S.cols());
-  for (int k = 0; k < m.n1; ++k) out.row(vars[k]) = S.row(k);
-  return out;
 }
 
 }  // namespace mo2d

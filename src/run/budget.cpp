@@ -7,17 +7,22 @@
 
 #include "mo2d/error.hpp"
 #include "mo2d/model.hpp"
+#include "run/format.hpp"
 #include "run/run_budget.hpp"
 
 namespace mo2d {
 
-namespace {
+namespace detail {
 std::string fmt(double v) {
   std::ostringstream s;
   s.precision(6);
   s << v;
   return s.str();
 }
+}  // namespace detail
+
+namespace {
+using detail::fmt;
 std::string gigabytes(double bytes) {
   std::ostringstream s;
   s.precision(3);
