@@ -355,6 +355,7 @@ std::vector<std::function<double(double)>> efforts_from_inverse(const Model& m,
   };
   auto shared = std::make_shared<Shared>(m, std::move(prescribed), options);
   std::vector<std::function<double(double)>> out;
+  out.reserve(m.n_inputs());
   for (int k = 0; k < m.n_inputs(); ++k)
     out.push_back([shared, k](double t) { return shared->effort(k, t); });
   return out;

@@ -9,6 +9,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <limits>
 
 #include "forward/forward_run.hpp"
 #include "mo2d/dynamics.hpp"
@@ -152,7 +153,7 @@ class RkDriver {
   RunBudget budget_;
   int n_;
   bool project_ = true;
-  double last_stepped_over_ = -INFINITY;
+  double last_stepped_over_ = -std::numeric_limits<double>::infinity();
   std::array<VectorXd, 7> k_;
   VectorXd k_start_, k_next_;  // rates at the start of the next step (at the end of the last one)
   bool have_start_ = false;

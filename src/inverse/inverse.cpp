@@ -46,7 +46,7 @@ std::string null_variables(const MatrixXd& J, const std::vector<std::string>& la
   for (int k = 0; k < v.size(); ++k) idx[k] = k;
   std::sort(idx.begin(), idx.end(), [&](int a, int b) { return std::abs(v[a]) > std::abs(v[b]); });
   std::string s;
-  for (int k = 0; k < std::min<int>(3, v.size()); ++k)
+  for (int k = 0; k < std::min(3, static_cast<int>(v.size())); ++k)
     if (std::abs(v[idx[k]]) > 1e-3) s += (s.empty() ? "" : ", ") + labels[idx[k]];
   return s;
 }

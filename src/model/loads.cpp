@@ -5,8 +5,8 @@
 #include <cmath>
 
 #include "mo2d/error.hpp"
-#include "model/suggest.hpp"
 #include "model/build_stages.hpp"
+#include "model/suggest.hpp"
 
 namespace mo2d::build {
 namespace {

@@ -92,7 +92,7 @@ int Model::rate(const std::string& label) const {
 }
 
 Vec2 com_position(const Body& b, const Eigen::Ref<const Eigen::VectorXd>& q0) {
-  const Vec2 pi = node_position(b.nodes[b.ci], q0);
+  Vec2 pi = node_position(b.nodes[b.ci], q0);
   if (b.cj < 0) return pi;
   const Vec2 d = node_position(b.nodes[b.cj], q0) - pi;
   return pi + b.gamma * d + b.rho * perp(d);

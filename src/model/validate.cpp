@@ -9,8 +9,8 @@
 
 #include "constraints/constraints.hpp"
 #include "mo2d/error.hpp"
-#include "model/suggest.hpp"
 #include "model/build_stages.hpp"
+#include "model/suggest.hpp"
 
 namespace mo2d::build {
 namespace {
