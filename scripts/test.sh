@@ -2,7 +2,8 @@
 # Build and test mo2d twice: Release (build/) and Debug with AddressSanitizer and
 # UndefinedBehaviorSanitizer (build-asan/, benchmarks off). Stops at the first failure, so the
 # last lines printed are always the summary of the ctest run that decided the result.
-# MO2D_STYLE_CHECK=1 adds the style checks after the release configuration.
+# The style checks (scripts/check-style.sh) run after the release configuration; MO2D_STYLE_CHECK=0
+# skips them (a local run).
 #   ./scripts/test.sh
 set -euo pipefail
 cd "$(dirname "${BASH_SOURCE[0]}")/.."
