@@ -6,6 +6,7 @@
 #include "mo2d/inverse.hpp"
 #include "mo2d/kinematics.hpp"
 #include "output/result_rows.hpp"
+#include "output/trajectory_labels.hpp"
 #include "run/cpu_time.hpp"
 
 namespace mo2d {
@@ -23,13 +24,7 @@ Trajectory inverse_dynamics_lagrange(const Model& m, std::span<const Prescribed>
   MatrixXd L = MatrixXd::Zero(N, n1 + m1 + nu);
   VectorXd rhs(N), f(n1), c(m1), bb(m1);
   MatrixXd A(m1, n1);
-  Trajectory r;
-  r.kind = RunKind::inverse;
-  r.coordinate_labels = m.coordinate_labels;
-  r.rate_labels = m.rate_labels;
-  r.input_labels = m.input_labels();
-  r.reaction_labels = m.reaction_labels();
-  r.residual_labels = {"residual.position", "residual.velocity", "residual.acceleration"};
+  Trajectory r = detail::labelled_trajectory(m, RunKind::inverse);
   const int S = options.samples;
   r.time.resize(S);
   r.q0.resize(S, m.n0);

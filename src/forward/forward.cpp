@@ -15,6 +15,7 @@
 #include "mo2d/dynamics.hpp"
 #include "mo2d/error.hpp"
 #include "mo2d/kinematics.hpp"
+#include "output/trajectory_labels.hpp"
 #include "run/cpu_time.hpp"
 
 namespace mo2d {
@@ -282,13 +283,7 @@ Trajectory forward_dynamics(const Model& m, const State& initial, const ForwardO
   if (initial.q0.size() != m.n0 || initial.q1.size() != m.n1)
     throw Error("forward dynamics: the initial state does not match the model's variables", m.name);
   ForwardData d(m, o);
-  Trajectory r;
-  r.kind = RunKind::forward;
-  r.coordinate_labels = m.coordinate_labels;
-  r.rate_labels = m.rate_labels;
-  r.input_labels = m.input_labels();
-  r.reaction_labels = m.reaction_labels();
-  r.residual_labels = {"residual.position", "residual.velocity"};
+  Trajectory r = detail::labelled_trajectory(m, RunKind::forward);
   const int N = o.samples;
   r.efforts = MatrixXd::Zero(N, m.n_inputs());
   r.reactions = MatrixXd::Zero(N, m.n_reactions());

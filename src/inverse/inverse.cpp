@@ -7,7 +7,6 @@
 #include <algorithm>
 #include <cmath>
 #include <ctime>
-#include <sstream>
 
 #include "constraints/constraints.hpp"
 #include "kinematics/residuals.hpp"
@@ -17,7 +16,9 @@
 #include "mo2d/error.hpp"
 #include "mo2d/kinematics.hpp"
 #include "output/result_rows.hpp"
+#include "output/trajectory_labels.hpp"
 #include "run/cpu_time.hpp"
+#include "run/format.hpp"
 #include "run/run_budget.hpp"
 
 namespace mo2d {
@@ -31,12 +32,7 @@ double pivot_ratio(const Eigen::PartialPivLU<MatrixXd>& lu) {
   return mx > 0 ? d.minCoeff() / mx : 0.0;
 }
 
-std::string fmt(double v) {
-  std::ostringstream s;
-  s.precision(6);
-  s << v;
-  return s.str();
-}
+using detail::fmt;
 
 // Labels of the variables that dominate the null space of J (columns given by labels).
 std::string null_variables(const MatrixXd& J, const std::vector<std::string>& labels) {
@@ -428,13 +424,7 @@ Trajectory inverse_dynamics(const Model& m, std::span<const Prescribed> prescrib
                             const InverseOptions& options) {
   InverseData d(m, prescribed, options);
   const int N = options.samples;
-  Trajectory r;
-  r.kind = RunKind::inverse;
-  r.coordinate_labels = m.coordinate_labels;
-  r.rate_labels = m.rate_labels;
-  r.input_labels = m.input_labels();
-  r.reaction_labels = m.reaction_labels();
-  r.residual_labels = {"residual.position", "residual.velocity", "residual.acceleration"};
+  Trajectory r = detail::labelled_trajectory(m, RunKind::inverse);
   r.time.resize(N);
   r.q0.resize(N, m.n0);
   r.q1.resize(N, m.n1);

@@ -2,6 +2,7 @@
 #include "mo2d/trajectory.hpp"
 
 #include "model/suggest.hpp"
+#include "output/trajectory_labels.hpp"
 
 namespace mo2d {
 
@@ -13,6 +14,18 @@ const char* to_string(RunKind k) {
       return "forward";
   }
   return "?";
+}
+
+Trajectory detail::labelled_trajectory(const Model& m, RunKind kind) {
+  Trajectory r;
+  r.kind = kind;
+  r.coordinate_labels = m.coordinate_labels;
+  r.rate_labels = m.rate_labels;
+  r.input_labels = m.input_labels();
+  r.reaction_labels = m.reaction_labels();
+  r.residual_labels = {"residual.position", "residual.velocity"};
+  if (kind == RunKind::inverse) r.residual_labels.push_back("residual.acceleration");
+  return r;
 }
 
 int Trajectory::column(const std::string& l) const {
