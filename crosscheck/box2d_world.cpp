@@ -4,6 +4,7 @@
 #include <cmath>
 #include <numbers>
 
+#include "mo2d/dynamics.hpp"
 #include "mo2d/error.hpp"
 
 namespace mo2d::crosscheck_detail {
@@ -98,6 +99,12 @@ Box2DWorld build_box2d_world(const Model& m, const Eigen::VectorXd& q0, const Ei
     refuse("the translated Model must be built with Reduction::none (every joint a constraint)",
            m.name);
   for (const SpringLoad& s : m.springs) refuse("spring '" + s.name + "' is not translated", s.name);
+  for (const PointLoad& f : m.forces)
+    if (!f.fx.args.empty() || !f.fy.args.empty())
+      refuse("force '" + f.name + "' depends on the state (not translated)", f.name);
+  for (const TorqueLoad& tl : m.torques)
+    if (!tl.torque.args.empty())
+      refuse("torque '" + tl.name + "' depends on the state (not translated)", tl.name);
   for (const TorsionalLoad& s : m.torsional_springs)
     refuse("torsional spring '" + s.name + "' is not translated", s.name);
 
@@ -289,9 +296,12 @@ Vec2 reaction_force(const JointMap& j, double inv_dt) {
   return Vec2(F.x, F.y);
 }
 
+// The loads are functions of time only (translate refuses laws that read the state).
 void apply_loads(const Model& m, Box2DWorld& w, double t) {
+  const Eigen::VectorXd q1 = Eigen::VectorXd::Zero(m.n1);  // not read by a law of time
   for (const PointLoad& f : m.forces) {
-    const double fx = f.fx ? f.fx(t) : 0.0, fy = f.fy ? f.fy(t) : 0.0;
+    const Vec2 F = point_force(m, f, m.q0, q1, t);
+    const double fx = F.x(), fy = F.y();
     if (f.body < 0) continue;
     const Body& b = m.bodies[f.body];
     const Vec2 p = geometry_point(b, f.ci, f.cj, f.gamma, f.rho) - w.bodies[f.body].com_geometry;
@@ -300,7 +310,8 @@ void apply_loads(const Model& m, Box2DWorld& w, double t) {
   }
   for (const TorqueLoad& tl : m.torques)
     if (tl.body >= 0 && tl.torque)
-      w.bodies[tl.body].body->ApplyTorque(static_cast<float>(tl.torque(t)), false);
+      w.bodies[tl.body].body->ApplyTorque(static_cast<float>(torque_value(m, tl, m.q0, q1, t)),
+                                          false);
 }
 
 }  // namespace mo2d::crosscheck_detail

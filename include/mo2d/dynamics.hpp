@@ -30,15 +30,23 @@ MatrixXd mass_matrix(const Model& m);
 // Reduced applied forces f(q0, q1, t) (n1).
 void applied_forces(const Model& m, const Eigen::Ref<const VectorXd>& q0,
                     const Eigen::Ref<const VectorXd>& q1, double t, Eigen::Ref<VectorXd> f);
-// Potential energy of gravity and springs; power dissipated by the dampers (>= 0).
+// Potential energy of gravity and of the linear springs (those without a law; a unilateral one
+// only while it acts); power dissipated by their dampers (>= 0; a unilateral spring: its tension
+// less the elastic part, times dl/dt).
 double potential_energy(const Model& m, const Eigen::Ref<const VectorXd>& q0);
 double damping_power(const Model& m, const Eigen::Ref<const VectorXd>& q0,
                      const Eigen::Ref<const VectorXd>& q1);
-// Power of the applied forces (F . v of their points) and torques (tau . omega of their bodies)
-// at time t: what the energy balance integrates as their work (gravity and the springs' elastic
-// forces are in potential_energy, their dampers in damping_power, the inputs are B u . q1).
+// Power of the applied forces (F . v of their points), torques (tau . omega of their bodies) and
+// of the springs and torsional springs given by a law (-T dl/dt, tau (w2 - w1)) at time t: what
+// the energy balance integrates as their work (gravity and the linear springs' elastic forces are
+// in potential_energy, their dampers in damping_power, the inputs are B u . q1).
 double load_power(const Model& m, const Eigen::Ref<const VectorXd>& q0,
                   const Eigen::Ref<const VectorXd>& q1, double t);
+// The world-frame force of a point load and the torque of a torque load at (t, q0, q1).
+Vec2 point_force(const Model& m, const PointLoad& f, const Eigen::Ref<const VectorXd>& q0,
+                 const Eigen::Ref<const VectorXd>& q1, double t);
+double torque_value(const Model& m, const TorqueLoad& tq, const Eigen::Ref<const VectorXd>& q0,
+                    const Eigen::Ref<const VectorXd>& q1, double t);
 // Input matrix B (n1 x inputs): generalized force per unit effort.
 MatrixXd input_matrix(const Model& m);
 

@@ -61,6 +61,14 @@ struct InitialConditions {
 };
 State consistent_state(const Model& m, const InitialConditions& ic, double t0 = 0);
 
+// One effort law per input; assignable from time functions (what efforts_from_inverse returns).
+struct EffortLaws : std::vector<Law> {
+  using std::vector<Law>::vector;
+  EffortLaws() = default;
+  EffortLaws(const std::vector<std::function<double(double)>>& fns)  // NOLINT: implicit on purpose
+      : std::vector<Law>(fns.begin(), fns.end()) {}
+};
+
 struct ForwardOptions {
   double t0 = 0, t1 = 1;
   int samples = 101;  // output times, equally spaced in [t0, t1] (dense output)
@@ -77,8 +85,9 @@ struct ForwardOptions {
   double max_seconds = kDefaultMaxSeconds;
   // Dense-matrix and result memory the run may allocate (bytes, estimated before allocating).
   double max_memory = kDefaultMaxMemory;
-  // Input efforts, one per Model::inputs entry (missing or empty = zero).
-  std::vector<std::function<double(double t)>> efforts{};
+  // Input efforts, one law per Model::inputs entry (missing or empty = zero): a function of time
+  // (open loop), or of time and the state (mo2d/law.hpp: a feedback law, e.g. pd_control).
+  EffortLaws efforts{};
   // Stop early when this function of the state changes sign (root finding between steps).
   std::function<double(double t, const VectorXd& q0, const VectorXd& q1)> stop_when{};
   // Warn where (sigma_min / sigma_max)^2 of the dimensionless constraint Jacobian (columns scaled

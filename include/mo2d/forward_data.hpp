@@ -62,16 +62,17 @@ struct ForwardData {
   std::vector<int> edge_offset;  // per Model::merge_edges entry: offset of its forces in edge_force
 
   // ---- one evaluation (written by evaluation) --------------------------------------------------
-  MatrixXd A;       // m1 x n1: velocity constraint Jacobian, A q1 = b
-  VectorXd b;       // m1: right-hand side of A q1 = b
-  VectorXd c;       // m1: A a1 = c (minus alpha_B (A q1 - b) with Baumgarte's feedback)
-  VectorXd f;       // n1: applied generalized forces (gravity, forces, torques, springs, dampers)
-  VectorXd u;       // nu: efforts at t, one per Model::inputs entry
-  VectorXd Bu;      // n1: B u
-  VectorXd rhs;     // n1: f + B u
-  VectorXd a;       // n1: THE RESULT, the accelerations a1 = d/dt q1
-  VectorXd lambda;  // m1: multipliers, M a = f + B u - A^T lambda (warm start of the next one)
-  VectorXd local;   // slots: body-local applied forces before their sum into f (eq. 5.27)
+  MatrixXd A;  // m1 x n1: velocity constraint Jacobian, A q1 = b
+  VectorXd b;  // m1: right-hand side of A q1 = b
+  VectorXd c;  // m1: A a1 = c (minus alpha_B (A q1 - b) with Baumgarte's feedback)
+  VectorXd f;  // n1: applied generalized forces (gravity, forces, torques, springs, dampers)
+  VectorXd u;  // nu: efforts at t, one per Model::inputs entry
+  std::vector<CompiledLaw> effort_laws;  // nu: ForwardOptions::efforts compiled (empty: 0)
+  VectorXd Bu;                           // n1: B u
+  VectorXd rhs;                          // n1: f + B u
+  VectorXd a;                            // n1: THE RESULT, the accelerations a1 = d/dt q1
+  VectorXd lambda;     // m1: multipliers, M a = f + B u - A^T lambda (warm start of the next one)
+  VectorXd local;      // slots: body-local applied forces before their sum into f (eq. 5.27)
   VectorXd row_scale;  // m1: N, 1 / |row i of A diag(d)|: unit dimensionless rows
   // Direct solve by the Schur complement (has_Minv): An = N A (m1 x n1), AMinv = An M^-1 (m1 x
   // n1), G1 = An M^-1 An^T (m1 x m1, Cholesky llt_G), r1 = An M^-1 rhs - N c (m1) -> lambda_n.
@@ -156,7 +157,7 @@ struct ForwardData {
   std::unique_ptr<detail::SmallLU> lu_kkt_, lu_K_, lu_G1_;  // of KKT, K and G1
   std::vector<detail::SlotEntry> entries_;  // reactions: A entries attributed to body slots
 
-  void inputs(double t);
+  void inputs(double t, const VectorXd& q0, const VectorXd& q1);
   void set_inputs(const VectorXd& efforts, double t);
   void load(double t, const VectorXd& q0, const VectorXd& q1, bool baumgarte);
   void evaluate(double t, const VectorXd& q0, const VectorXd& q1);

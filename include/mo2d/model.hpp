@@ -167,19 +167,6 @@ struct Input {
   std::vector<std::pair<VarRef, double>> terms;  // column of B (generalized force per unit effort)
 };
 
-struct PointLoad {
-  std::string name;
-  int body = -1;
-  int ci = 0, cj = -1;  // point by local nodes, like the centre of mass
-  double gamma = 0, rho = 0;
-  Signal fx, fy;
-};
-struct TorqueLoad {
-  std::string name;
-  int body = -1;
-  Signal torque;
-};
-
 // A point fixed in a body (by local nodes like the centre of mass) or in the ground.
 struct BodyPoint {
   int body = -1;  // -1: ground, at `fixed`
@@ -187,15 +174,70 @@ struct BodyPoint {
   double gamma = 0, rho = 0;
   Vec2 fixed{0, 0};
 };
+
+// One quantity of the state a law reads (mo2d/law.hpp), resolved from its label by build_model.
+struct Quantity {
+  enum class Kind {
+    coordinate,      // q0[var]
+    rate,            // q1[var]
+    constant,        // value (a coordinate of a node joined to the ground)
+    point_x,         // position of point a, x
+    point_y,         //   y
+    point_vx,        // velocity of point a, x
+    point_vy,        //   y
+    distance,        // |p_b - p_a| - value (length, or extension when value = rest length)
+    distance_rate,   // d/dt |p_b - p_a|
+    body_angle,      // direction of body1's first two nodes (body1 -1: 0), minus value, wrapped
+    relative_angle,  // theta(body2) - theta(body1) - value, wrapped to (-pi, pi]
+    relative_rate,   // omega(body2) - omega(body1)
+  } kind = Kind::constant;
+  int var = -1;
+  double value = 0;
+  BodyPoint a{}, b{};
+  int body1 = -1, body2 = -1;
+};
+
+// A Law with its labels resolved: f(x, t), x[k] = args[k] at the state. Empty f: the value 0.
+struct CompiledLaw {
+  std::vector<Quantity> args;
+  std::vector<std::string> labels;  // the labels of args, as the law wrote them
+  std::function<Jet(std::span<const Jet>, Jet)> f;
+  explicit operator bool() const { return static_cast<bool>(f); }
+};
+inline constexpr int kMaxLawArgs = 64;  // arguments of one law (evaluated without allocation)
+
+struct PointLoad {
+  std::string name;
+  int body = -1;
+  int ci = 0, cj = -1;  // point by local nodes, like the centre of mass
+  double gamma = 0, rho = 0;
+  double cos = 1, sin = 0;  // rotation of the owning System's frame: F = R (fx, fy)
+  CompiledLaw fx, fy;
+};
+struct TorqueLoad {
+  std::string name;
+  int body = -1;
+  CompiledLaw torque;
+};
+
 struct SpringLoad {
   std::string name;
   BodyPoint a, b;
   double rest_length = 0, stiffness = 0, damping = 0;
+  CompiledLaw tension;  // empty: linear
+  SpringActs acts = SpringActs::both;
 };
 struct TorsionalLoad {
   std::string name;
   int body1 = -1, body2 = -1;  // -1: ground
   double stiffness = 0, damping = 0, rest = 0;
+  CompiledLaw torque;  // empty: linear
+};
+
+// A named point (System::add_point): an output of every run and a quantity laws may read.
+struct NamedPoint {
+  std::string name;
+  BodyPoint point;
 };
 
 // A joint eliminated by variable reduction: its reaction is recovered by splitting the merged
@@ -256,6 +298,9 @@ struct Model {
   std::vector<TorqueLoad> torques;
   std::vector<SpringLoad> springs;
   std::vector<TorsionalLoad> torsional_springs;
+  std::vector<NamedPoint> points;
+  // Derived quantities by label (mo2d/law.hpp): bodies, joints, springs, points, node aliases.
+  std::unordered_map<std::string, Quantity> quantities;
 
   std::vector<TreeNode> tree;  // tree[0] is the root
   Eigen::VectorXd q0;          // initial configuration (assembled)
@@ -267,6 +312,25 @@ struct Model {
 };
 
 Model build_model(const System& system, const BuildOptions& options = {});
+
+// A law's labels resolved against m: `prefix` is the instance path of the System that owns it
+// ("" at the root, "leg." ...), `locals` the quantities only this law may read ("length" of its
+// spring). Throws Error (message starting with `what`, element `element`) naming the unknown
+// label, with a suggestion.
+CompiledLaw compile_law(const Model& m, const Law& law, const std::string& what,
+                        const std::string& element, const std::string& prefix = "",
+                        const std::vector<std::pair<std::string, Quantity>>& locals = {});
+// The value of a compiled law at (t, q0, q1) (0 for an empty law). Not finite: an Error
+// "<role> '<element>' is not finite at t = ..." with the values of its arguments. No allocation
+// otherwise.
+double law_value(const Model& m, const CompiledLaw& law,
+                 const Eigen::Ref<const Eigen::VectorXd>& q0,
+                 const Eigen::Ref<const Eigen::VectorXd>& q1, double t, const char* role,
+                 const std::string& element);
+// The value of one quantity at (q0, q1).
+double quantity_value(const Model& m, const Quantity& q,
+                      const Eigen::Ref<const Eigen::VectorXd>& q0,
+                      const Eigen::Ref<const Eigen::VectorXd>& q1);
 
 // Position of node k of body b for coordinates q0.
 inline Vec2 node_position(const NodeRef& n, const Eigen::Ref<const Eigen::VectorXd>& q0) {

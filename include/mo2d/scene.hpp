@@ -9,6 +9,7 @@
 #include <utility>
 #include <vector>
 
+#include "mo2d/control.hpp"
 #include "mo2d/error.hpp"
 #include "mo2d/forward.hpp"
 #include "mo2d/inverse.hpp"
@@ -62,18 +63,31 @@ struct LabelUse {
   Location where{};
 };
 
+// A controller of the scene (`controllers:`): PD feedback on a coordinate towards a reference,
+// the effort of one input (mo2d/control.hpp).
+struct SceneController {
+  std::string input{};                // input label ("crank_pivot.torque")
+  PdControl control{};                // its feed_forward: the expression given, if any
+  bool feed_forward_inverse = false;  // feed-forward from inverse dynamics of the references
+  Location where{};
+};
+
 struct Scene {
   std::string file{};
   std::string name{};
   std::vector<std::pair<std::string, double>> parameters{};  // in dependency order, evaluated
   System system{};
-  std::vector<Prescribed> motion{};                       // inverse: one per DOF
-  InitialConditions initial{};                            // forward
-  std::vector<std::pair<std::string, Signal>> efforts{};  // forward: input label -> u(t)
+  std::vector<Prescribed> motion{};  // inverse: one per DOF
+  InitialConditions initial{};       // forward
+  // forward: input label -> effort law (of t, or of t and the state: a feedback)
+  std::vector<std::pair<std::string, Law>> efforts{};
+  std::vector<SceneController> controllers{};  // forward: feedback efforts
   RunSettings run{};
   std::vector<LabelUse> labels{};
   // element name -> definition (run keys as "run.t0", "run.step", ...)
   std::vector<std::pair<std::string, Location>> elements{};
+  // "element/label" -> where a law (a load's, an effort's) names a quantity of the state
+  std::vector<std::pair<std::string, Location>> law_labels{};
 };
 
 // A parameter override "name=value" (value: an expression of the other parameters).
@@ -94,13 +108,21 @@ Model build_scene_model(const Scene& scene, const BuildOptions& options = {});
 
 // Run options of the scene's settings.
 InverseOptions inverse_options(const Scene& scene);
-// Efforts are ordered like Model::inputs (inputs without an effort get none: zero).
+// Efforts are ordered like Model::inputs (inputs without an effort get none: zero); a controller
+// gives its input the PD law, with the exact feed-forward from inverse dynamics of the
+// controllers' references if asked (all controllers asking it together must prescribe the DOF).
 ForwardOptions forward_options(const Scene& scene, const Model& model);
 // check_inverse_options / check_forward_options (and the model's magnitudes), a refusal reported
 // as a SceneError at the line of the run key it names (run.t0, run.step, ...; the file alone for
 // a setting left at its default or overridden on the command line).
 void check_scene_options(const Scene& scene, const Model& model, const InverseOptions& options);
 void check_scene_options(const Scene& scene, const Model& model, const ForwardOptions& options);
+// Tracking error of each controller over a forward run: max |x - r| and where, and at the end.
+struct TrackingError {
+  std::string input, coordinate;
+  double max_error = 0, t_max = 0, final_error = 0;
+};
+std::vector<TrackingError> tracking_errors(const Scene& scene, const Trajectory& r);
 // Consistent initial state of a forward run (consistent_state with the scene's initial values).
 State initial_state(const Scene& scene, const Model& model);
 

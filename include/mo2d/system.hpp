@@ -25,6 +25,7 @@
 #include <vector>
 
 #include "mo2d/jet.hpp"
+#include "mo2d/law.hpp"
 
 namespace mo2d {
 
@@ -123,25 +124,35 @@ struct VelocityConstraintDef {
   std::function<Jet(std::span<const Jet> x, std::span<const Jet> v, Jet t)> g{};
 };
 
-using Signal = std::function<double(double t)>;
-
 // A force applied at a point fixed in a body (given in the System's frame at the initial
-// configuration) or a pure torque on a body.
+// configuration) or a pure torque on a body. The components are laws (mo2d/law.hpp): functions of
+// time, or of time and the state ("crank.theta", "crank.w"); the force's components are in the
+// System's frame (rotated with its instance).
 struct ForceDef {
   std::string name{};
   std::string body{};
   Vec2 point{0, 0};
-  Signal fx{}, fy{};  // empty = 0
+  Law fx{}, fy{};  // N; empty = 0
 };
 struct TorqueDef {
   std::string name{};
   std::string body{};
-  Signal torque{};
+  Law torque{};  // N m, counter-clockwise on the body; empty = 0
 };
 
-// A linear spring-damper between two points fixed in bodies ("ground" allowed), given in the
-// System's frame at the initial configuration. Tension T = k (l - rest_length) + c dl/dt pulls the
-// points together when positive.
+// Which sign of the tension a spring can carry: both (a spring), tension only (a chain, a cable,
+// a rope: slack when the tension would push) or compression only (a bump stop: acts only while
+// compressed below its rest length).
+enum class SpringActs { both, tension_only, compression_only };
+
+// A spring-damper between two points fixed in bodies ("ground" allowed), given in the System's
+// frame at the initial configuration. Its tension T pulls the points together when positive:
+//  - linear: T = k (l - rest_length) + c dl/dt; its elastic energy is a potential;
+//  - any law: T = tension(...), a Law that may read "length", "extension" (l - rest_length) and
+//    "rate" (dl/dt) of this spring besides any state quantity; its work is counted as load work.
+// `acts` clips T: tension_only gives max(T, 0), and a linear spring is slack (T = 0) while
+// l < rest_length; compression_only gives min(T, 0), and a linear one acts only while
+// l < rest_length (a bump stop).
 struct SpringDef {
   std::string name{};
   std::string body_a{};
@@ -149,18 +160,32 @@ struct SpringDef {
   std::string body_b{};
   Vec2 point_b{0, 0};
   double rest_length = 0;  // m (>= 0)
-  double stiffness = 0;    // N/m (>= 0)
-  double damping = 0;      // N s/m (>= 0)
+  double stiffness = 0;    // N/m (>= 0); with a tension law: must be 0
+  double damping = 0;      // N s/m (>= 0); with a tension law: must be 0
+  Law tension{};           // N; empty: the linear law above
+  SpringActs acts = SpringActs::both;
 };
 
 // A torsional spring-damper at a revolute joint: torque -k (theta - rest) - c (w2 - w1) on body 2
-// and the opposite on body 1, theta = relative angle of the bodies (measured within +-pi of rest).
+// and the opposite on body 1, theta = relative angle of the bodies (measured within +-pi of rest);
+// or any law: torque = torque(...), a Law that may read "angle" (theta - rest, within +-pi) and
+// "rate" (w2 - w1) besides any state quantity (its work is counted as load work).
 struct TorsionalSpringDef {
   std::string name{};
   std::string joint{};           // a revolute joint of this System
-  double stiffness = 0;          // N m / rad
-  double damping = 0;            // N m s / rad
+  double stiffness = 0;          // N m / rad; with a torque law: must be 0
+  double damping = 0;            // N m s / rad; with a torque law: must be 0
   std::optional<double> rest{};  // rad; default: the relative angle at the initial configuration
+  Law torque{};                  // N m on body 2 (and -torque on body 1); empty: the linear law
+};
+
+// A named point fixed in a body ("ground" allowed), given in the System's frame at the initial
+// configuration: its position and velocity are quantities laws may read ("name.x", "name.vy")
+// and outputs of every run.
+struct PointDef {
+  std::string name{};
+  std::string body{};
+  Vec2 point{0, 0};
 };
 
 struct Placement {
@@ -194,6 +219,7 @@ class System {
   System& add_torque(TorqueDef torque);
   System& add_spring(SpringDef spring);
   System& add_torsional_spring(TorsionalSpringDef spring);
+  System& add_point(PointDef point);
   System& add_instance(std::string name, const System& sub, Placement placement = {});
   System& set_gravity(Vec2 g);
 
@@ -210,6 +236,7 @@ class System {
   const std::vector<TorqueDef>& torques() const { return torques_; }
   const std::vector<SpringDef>& springs() const { return springs_; }
   const std::vector<TorsionalSpringDef>& torsional_springs() const { return torsional_; }
+  const std::vector<PointDef>& points() const { return points_; }
   const std::vector<Instance>& instances() const { return instances_; }
   const Vec2& gravity() const { return gravity_; }
 
@@ -227,6 +254,7 @@ class System {
   std::vector<TorqueDef> torques_;
   std::vector<SpringDef> springs_;
   std::vector<TorsionalSpringDef> torsional_;
+  std::vector<PointDef> points_;
   std::vector<Instance> instances_;
   Vec2 gravity_{0, 0};
 };

@@ -1,54 +1,18 @@
 // Constant mass matrix and applied forces of the nodal 2D rigid body element.
 #include "mo2d/dynamics.hpp"
 
+#include <algorithm>
 #include <string>
 
 #include "constraints/constraints.hpp"
+#include "dynamics/points.hpp"
 #include "mo2d/error.hpp"
 
 namespace mo2d {
-namespace {
-
-// Generalized force of a force F applied at the point (ci, cj, gamma, rho): J^T F.
-inline void add_point_force(const Body& b, int ci, int cj, double gamma, double rho, const Vec2& F,
-                            double* local) {
-  if (cj < 0) {
-    local[2 * ci] += F.x();
-    local[2 * ci + 1] += F.y();
-    return;
-  }
-  // J_i^T F, J_j^T F
-  local[2 * ci] += (1 - gamma) * F.x() - rho * F.y();
-  local[2 * ci + 1] += rho * F.x() + (1 - gamma) * F.y();
-  local[2 * cj] += gamma * F.x() + rho * F.y();
-  local[2 * cj + 1] += -rho * F.x() + gamma * F.y();
-  (void)b;
-}
-
-// J (x_i, x_j) of Example 2.6 (b): the point (ci, cj, gamma, rho) from its two nodes' values.
-inline Vec2 combine_point(const Vec2& xi, const Vec2& xj, double gamma, double rho) {
-  return {(1 - gamma) * xi.x() + rho * xi.y() + gamma * xj.x() - rho * xj.y(),
-          -rho * xi.x() + (1 - gamma) * xi.y() + rho * xj.x() + gamma * xj.y()};
-}
-
-// Velocity (or acceleration, for x = q1 rates) of a body point: a fixed node contributes 0.
-inline Vec2 local_velocity_of_point(const Body& b, const Eigen::Ref<const VectorXd>& x, int ci,
-                                    int cj, double gamma, double rho) {
-  Vec2 vi = node_velocity(b.nodes[ci], x);
-  if (cj < 0) return vi;
-  return combine_point(vi, node_velocity(b.nodes[cj], x), gamma, rho);
-}
-
-// Position of a body point: a fixed node (joined to the ground) sits at its fixed position, which
-// is why positions must never go through the velocity helper above.
-inline Vec2 local_position_of_point(const Body& b, const Eigen::Ref<const VectorXd>& q0, int ci,
-                                    int cj, double gamma, double rho) {
-  Vec2 pi = node_position(b.nodes[ci], q0);
-  if (cj < 0) return pi;
-  return combine_point(pi, node_position(b.nodes[cj], q0), gamma, rho);
-}
-
-}  // namespace
+using detail::add_point_force;
+using detail::local_velocity_of_point;
+using detail::point_state;
+using detail::PointState;
 
 void body_inertia(const Model& m, const Eigen::Ref<const VectorXd>& a1,
                   Eigen::Ref<VectorXd> local) {
@@ -65,17 +29,6 @@ void body_inertia(const Model& m, const Eigen::Ref<const VectorXd>& a1,
 }
 
 namespace {
-
-struct PointState {
-  Vec2 p, v;
-};
-PointState point_state(const Model& m, const BodyPoint& bp, const Eigen::Ref<const VectorXd>& q0,
-                       const Eigen::Ref<const VectorXd>& q1) {
-  if (bp.body < 0) return {bp.fixed, Vec2(0, 0)};
-  const Body& b = m.bodies[bp.body];
-  return {local_position_of_point(b, q0, bp.ci, bp.cj, bp.gamma, bp.rho),
-          local_velocity_of_point(b, q1, bp.ci, bp.cj, bp.gamma, bp.rho)};
-}
 
 double relative_angle(const Model& m, const TorsionalLoad& l,
                       const Eigen::Ref<const VectorXd>& q0) {
@@ -104,15 +57,54 @@ SpringState spring_state(const Model& m, const SpringLoad& s, const Eigen::Ref<c
 
 }  // namespace
 
+namespace {
+
+// A spring's tension at its state, and the elastic part of it that has a potential (linear
+// springs: k (l - l0) while the spring acts; laws: none, their work is load work).
+struct SpringForce {
+  double T = 0, elastic = 0;
+};
+SpringForce spring_force(const Model& m, const SpringLoad& s, const SpringState& st,
+                         const Eigen::Ref<const VectorXd>& q0, const Eigen::Ref<const VectorXd>& q1,
+                         double t) {
+  if (s.tension) {
+    const double T = law_value(m, s.tension, q0, q1, t, "tension of spring", s.name);
+    if (s.acts == SpringActs::tension_only) return {std::max(T, 0.0), 0};
+    if (s.acts == SpringActs::compression_only) return {std::min(T, 0.0), 0};
+    return {T, 0};
+  }
+  const double dl = st.l - s.rest_length;
+  if ((s.acts == SpringActs::tension_only && dl <= 0) ||
+      (s.acts == SpringActs::compression_only && dl >= 0))
+    return {0, 0};
+  const double T = s.stiffness * dl + s.damping * st.ldot;
+  if (s.acts == SpringActs::tension_only) return {std::max(T, 0.0), s.stiffness * dl};
+  if (s.acts == SpringActs::compression_only) return {std::min(T, 0.0), s.stiffness * dl};
+  return {T, s.stiffness * dl};
+}
+
+// A torsional spring's torque on body 2 (a law; the linear law is written out where it is used).
+double torsional_law(const Model& m, const TorsionalLoad& l, const Eigen::Ref<const VectorXd>& q0,
+                     const Eigen::Ref<const VectorXd>& q1, double t) {
+  return law_value(m, l.torque, q0, q1, t, "torque of torsional spring", l.name);
+}
+
+}  // namespace
+
 double potential_energy(const Model& m, const Eigen::Ref<const VectorXd>& q0) {
   double v = 0;
   for (const Body& b : m.bodies) v -= b.mass * m.gravity.dot(com_position(b, q0));
   const VectorXd zero = VectorXd::Zero(m.n1);
   for (const auto& s : m.springs) {
+    if (s.tension) continue;  // a law: load work
     const double dl = spring_state(m, s, q0, zero).l - s.rest_length;
+    if ((s.acts == SpringActs::tension_only && dl <= 0) ||
+        (s.acts == SpringActs::compression_only && dl >= 0))
+      continue;
     v += 0.5 * s.stiffness * dl * dl;
   }
   for (const auto& l : m.torsional_springs) {
+    if (l.torque) continue;
     const double th = relative_angle(m, l, q0);
     v += 0.5 * l.stiffness * th * th;
   }
@@ -123,26 +115,53 @@ double damping_power(const Model& m, const Eigen::Ref<const VectorXd>& q0,
                      const Eigen::Ref<const VectorXd>& q1) {
   double p = 0;
   for (const auto& s : m.springs) {
-    const double ld = spring_state(m, s, q0, q1).ldot;
-    p += s.damping * ld * ld;
+    if (s.tension) continue;
+    const SpringState st = spring_state(m, s, q0, q1);
+    if (s.acts == SpringActs::both) {
+      p += s.damping * st.ldot * st.ldot;
+      continue;
+    }
+    // a unilateral spring: what its tension takes beyond the elastic part (the damping, and the
+    // clipped part when it would push or pull), t unused by linear springs
+    const SpringForce F = spring_force(m, s, st, q0, q1, 0.0);
+    p += (F.T - F.elastic) * st.ldot;
   }
   for (const auto& l : m.torsional_springs) {
+    if (l.torque) continue;
     const double w = relative_rate(m, l, q1);
     p += l.damping * w * w;
   }
   return p;
 }
 
+Vec2 point_force(const Model& m, const PointLoad& f, const Eigen::Ref<const VectorXd>& q0,
+                 const Eigen::Ref<const VectorXd>& q1, double t) {
+  const double fx = f.fx ? law_value(m, f.fx, q0, q1, t, "force", f.name) : 0.0;
+  const double fy = f.fy ? law_value(m, f.fy, q0, q1, t, "force", f.name) : 0.0;
+  return {f.cos * fx - f.sin * fy, f.sin * fx + f.cos * fy};
+}
+
+double torque_value(const Model& m, const TorqueLoad& tq, const Eigen::Ref<const VectorXd>& q0,
+                    const Eigen::Ref<const VectorXd>& q1, double t) {
+  return tq.torque ? law_value(m, tq.torque, q0, q1, t, "torque", tq.name) : 0.0;
+}
+
 double load_power(const Model& m, const Eigen::Ref<const VectorXd>& q0,
                   const Eigen::Ref<const VectorXd>& q1, double t) {
   double p = 0;
   for (const auto& f : m.forces) {  // F . v of the point it acts on
-    const Vec2 F(f.fx ? f.fx(t) : 0.0, f.fy ? f.fy(t) : 0.0);
     const BodyPoint bp{f.body, f.ci, f.cj, f.gamma, f.rho, Vec2(0, 0)};
-    p += F.dot(point_state(m, bp, q0, q1).v);
+    p += point_force(m, f, q0, q1, t).dot(point_state(m, bp, q0, q1).v);
   }
   for (const auto& tq : m.torques)  // tau . omega of its body
-    p += (tq.torque ? tq.torque(t) : 0.0) * omega_value(m.bodies[tq.body].omega, q1);
+    p += torque_value(m, tq, q0, q1, t) * omega_value(m.bodies[tq.body].omega, q1);
+  for (const auto& s : m.springs) {  // a spring law: -T dl/dt
+    if (!s.tension) continue;
+    const SpringState st = spring_state(m, s, q0, q1);
+    p -= spring_force(m, s, st, q0, q1, t).T * st.ldot;
+  }
+  for (const auto& l : m.torsional_springs)  // a torque law: tau (w2 - w1)
+    if (l.torque) p += torsional_law(m, l, q0, q1, t) * relative_rate(m, l, q1);
   return p;
 }
 
@@ -153,7 +172,7 @@ void body_applied(const Model& m, const Eigen::Ref<const VectorXd>& q0,
     add_point_force(b, b.ci, b.cj, b.gamma, b.rho, b.mass * m.gravity, local.data() + b.offset);
   for (const auto& f : m.forces) {
     const Body& b = m.bodies[f.body];
-    const Vec2 F(f.fx ? f.fx(t) : 0.0, f.fy ? f.fy(t) : 0.0);
+    const Vec2 F = point_force(m, f, q0, q1, t);
     if (!F.allFinite())
       throw Error("force '" + f.name + "' is not finite at t = " + std::to_string(t) + " s", f.name,
                   t);
@@ -161,7 +180,7 @@ void body_applied(const Model& m, const Eigen::Ref<const VectorXd>& q0,
   }
   for (const auto& tq : m.torques) {
     const Body& b = m.bodies[tq.body];
-    const double tau = tq.torque ? tq.torque(t) : 0.0;
+    const double tau = torque_value(m, tq, q0, q1, t);
     if (!std::isfinite(tau))
       throw Error("torque '" + tq.name + "' is not finite at t = " + std::to_string(t) + " s",
                   tq.name, t);
@@ -169,7 +188,7 @@ void body_applied(const Model& m, const Eigen::Ref<const VectorXd>& q0,
   }
   for (const auto& s : m.springs) {  // tension T pulls a towards b and b towards a
     const SpringState st = spring_state(m, s, q0, q1);
-    const double T = s.stiffness * (st.l - s.rest_length) + s.damping * st.ldot;
+    const double T = spring_force(m, s, st, q0, q1, t).T;
     if (s.a.body >= 0)
       add_point_force(m.bodies[s.a.body], s.a.ci, s.a.cj, s.a.gamma, s.a.rho, T * st.e,
                       local.data() + m.bodies[s.a.body].offset);
@@ -179,7 +198,8 @@ void body_applied(const Model& m, const Eigen::Ref<const VectorXd>& q0,
   }
   for (const auto& l : m.torsional_springs) {
     const double tau =
-        -l.stiffness * relative_angle(m, l, q0) - l.damping * relative_rate(m, l, q1);
+        l.torque ? torsional_law(m, l, q0, q1, t)
+                 : -l.stiffness * relative_angle(m, l, q0) - l.damping * relative_rate(m, l, q1);
     if (l.body2 >= 0) local[m.bodies[l.body2].offset + m.bodies[l.body2].slots() - 1] += tau;
     if (l.body1 >= 0) local[m.bodies[l.body1].offset + m.bodies[l.body1].slots() - 1] -= tau;
   }

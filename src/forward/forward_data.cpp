@@ -43,6 +43,10 @@ ForwardData::ForwardData(const Model& model, const ForwardOptions& opt) : m(mode
   b = c = VectorXd::Zero(m.m1);
   f = Bu = rhs = a = ap = tmp0 = tmp1 = VectorXd::Zero(m.n1);
   u = VectorXd::Zero(m.n_inputs());
+  effort_laws.resize(m.n_inputs());
+  for (int k = 0; k < m.n_inputs() && k < static_cast<int>(o.efforts.size()); ++k)
+    effort_laws[k] = compile_law(m, o.efforts[k], "effort of input '" + m.inputs[k].label + "'",
+                                 m.inputs[k].label);
   lambda = VectorXd::Zero(m.m1);
   psi = VectorXd::Zero(m.m0);
   local = VectorXd::Zero(m.n_slots);
@@ -97,10 +101,10 @@ ForwardData::ForwardData(const Model& model, const ForwardOptions& opt) : m(mode
 
 ForwardData::~ForwardData() = default;
 
-void ForwardData::inputs(double t) {
+// u = the effort laws at (t, q0, q1): a law that reads the state is a feedback (a controller).
+void ForwardData::inputs(double t, const VectorXd& q0, const VectorXd& q1) {
   for (int k = 0; k < m.n_inputs(); ++k) {
-    const bool has = k < static_cast<int>(o.efforts.size()) && o.efforts[k];
-    u[k] = has ? o.efforts[k](t) : 0.0;
+    u[k] = law_value(m, effort_laws[k], q0, q1, t, "effort of input", m.inputs[k].label);
     if (!std::isfinite(u[k]))
       throw Error("effort of input '" + m.inputs[k].label + "' is not finite at t = " + fmt(t),
                   m.inputs[k].label, t);
@@ -195,7 +199,7 @@ void ForwardData::choose_independent(const VectorXd& q0, double t) {
 // efforts (from the options' functions at t, or given), then a and lambda by the formulation.
 void ForwardData::accelerations(double t, const VectorXd& q0, const VectorXd& q1, bool baumgarte) {
   load(t, q0, q1, baumgarte);
-  inputs(t);
+  inputs(t, q0, q1);
   evaluate(t, q0, q1);
 }
 
@@ -443,7 +447,7 @@ void ForwardData::compute_reactions(double t, const VectorXd& q0, const VectorXd
   la -= local;  // M a - f, body-local
   w.setZero();
   scatter_local(m, la, w);
-  inputs(t);
+  inputs(t, q0, q1);
   if (m.m1 > 0) {
     lam_ls = regularized_normal_solve(A, Bu - w, 1e-14);
   }

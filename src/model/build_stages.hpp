@@ -67,10 +67,12 @@ struct Flat {
   std::vector<Owned<CoordinateDef>> coordinates;
   std::vector<Owned<PositionConstraintDef>> pos;
   std::vector<Owned<VelocityConstraintDef>> vel;
-  std::vector<Owned<ForceDef>> forces;  // point and force vector in world
+  std::vector<Owned<ForceDef>> forces;  // point in world, force components in the owner's frame
+  std::vector<double> force_angle;      // per force: angle of its owner's frame (rad)
   std::vector<Owned<TorqueDef>> torques;
   std::vector<Owned<SpringDef>> springs;  // attachment points in world
   std::vector<Owned<TorsionalSpringDef>> torsional;
+  std::vector<Owned<PointDef>> points;  // point in world
 };
 
 Flat flatten(const System& system);
@@ -182,8 +184,15 @@ JointReactions add_rows(const Flat& flat, const Elements& el, const Reduced& red
 
 // ---- 6. loads -----------------------------------------------------------------------------------
 
-// m.forces, m.torques, m.springs, m.torsional_springs.
+// m.forces, m.torques, m.springs, m.torsional_springs, m.points, then m.quantities (the derived
+// quantities laws may read, laws.cpp) and the loads' laws compiled against them.
 void add_loads(const Flat& flat, const Elements& el, const Reduced& red, Model& m);
+// laws.cpp: m.quantities from the bodies, nodes, revolute joints, springs and points.
+void add_quantities(const Flat& flat, const Elements& el, const Reduced& red, Model& m);
+// A body point from a point given in world coordinates at the initial configuration ("ground"
+// allowed); throws naming `what` if the body is unknown or has one node elsewhere.
+BodyPoint body_point(const Model& m, const std::string& prefix, const std::string& body,
+                     const Vec2& p, const std::string& what);
 
 // ---- 7. merge edges -----------------------------------------------------------------------------
 

@@ -75,13 +75,8 @@ void flatten_loads(const System& s, const std::string& prefix, const Frame& fram
   for (const auto& f : s.forces()) {
     ForceDef w = f;
     w.point = frame.apply(f.point);
-    const double c = std::cos(frame.angle), sn = std::sin(frame.angle);
-    if (f.fx || f.fy) {  // rotate the force vector into the world frame
-      Signal fx = f.fx, fy = f.fy;
-      w.fx = [fx, fy, c, sn](double t) { return c * (fx ? fx(t) : 0.0) - sn * (fy ? fy(t) : 0.0); };
-      w.fy = [fx, fy, c, sn](double t) { return sn * (fx ? fx(t) : 0.0) + c * (fy ? fy(t) : 0.0); };
-    }
     out.forces.push_back({std::move(w), tree_index, prefix});
+    out.force_angle.push_back(frame.angle);  // the components are rotated where they are applied
   }
   for (const auto& t : s.torques()) out.torques.push_back({t, tree_index, prefix});
   for (const auto& sp : s.springs()) {
@@ -91,6 +86,11 @@ void flatten_loads(const System& s, const std::string& prefix, const Frame& fram
     out.springs.push_back({std::move(w), tree_index, prefix});
   }
   for (const auto& ts : s.torsional_springs()) out.torsional.push_back({ts, tree_index, prefix});
+  for (const auto& p : s.points()) {
+    PointDef w = p;
+    w.point = frame.apply(p.point);
+    out.points.push_back({std::move(w), tree_index, prefix});
+  }
 }
 
 void flatten(const System& s, const std::string& prefix, const Frame& frame, int tree_index,

@@ -37,8 +37,9 @@ void add_forces(const Flat& flat, Model& m) {
     } else if ((f.def.point - b.geometry[0]).norm() > 1e-12 * m.scale) {
       throw Error(what + ": body '" + b.name + "' has one node: the force must act at it", l.name);
     }
-    l.fx = f.def.fx;
-    l.fy = f.def.fy;
+    const double angle = flat.force_angle[&f - flat.forces.data()];
+    l.cos = std::cos(angle);
+    l.sin = std::sin(angle);
     m.forces.push_back(std::move(l));
   }
   for (const auto& t : flat.torques) {
@@ -48,30 +49,8 @@ void add_forces(const Flat& flat, Model& m) {
     l.body = find_body(m, t.prefix, t.def.body, what);
     if (!m.bodies[l.body].has_omega)
       throw Error(what + ": body '" + m.bodies[l.body].name + "' has no rotation", l.name);
-    l.torque = t.def.torque;
     m.torques.push_back(std::move(l));
   }
-}
-
-BodyPoint body_point(const Model& m, const std::string& prefix, const std::string& body,
-                     const Vec2& p, const std::string& what) {
-  BodyPoint bp;
-  if (body == "ground") {
-    bp.fixed = p;
-    return bp;
-  }
-  bp.body = find_body(m, prefix, body, what);
-  const Body& b = m.bodies[bp.body];
-  if (b.geometry.size() >= 2) {
-    const Vec2 gr = on_first_two_nodes(b.geometry, p);
-    bp.ci = 0;
-    bp.cj = 1;
-    bp.gamma = gr.x();
-    bp.rho = gr.y();
-  } else if ((p - b.geometry[0]).norm() > 1e-12 * m.scale) {
-    throw Error(what + ": body '" + b.name + "' has one node: the point must be the node", b.name);
-  }
-  return bp;
 }
 
 void nonnegative(double v, const std::string& what, const char* field, const std::string& el) {
@@ -96,6 +75,10 @@ void add_springs(const Flat& flat, Model& m) {
     l.rest_length = sp.def.rest_length;
     l.stiffness = sp.def.stiffness;
     l.damping = sp.def.damping;
+    l.acts = sp.def.acts;
+    if (sp.def.tension && (l.stiffness != 0 || l.damping != 0))
+      throw Error(what + ": a tension law replaces stiffness and damping (give one or the other)",
+                  name);
     m.springs.push_back(std::move(l));
   }
 }
@@ -138,7 +121,93 @@ void add_torsional_springs(const Flat& flat, const Elements& el, const Reduced& 
     l.rest = ts.def.rest.value_or(implied);
     l.stiffness = ts.def.stiffness;
     l.damping = ts.def.damping;
+    if (ts.def.torque && (l.stiffness != 0 || l.damping != 0))
+      throw Error(what + ": a torque law replaces stiffness and damping (give one or the other)",
+                  name);
     m.torsional_springs.push_back(std::move(l));
+  }
+}
+
+}  // namespace
+
+BodyPoint body_point(const Model& m, const std::string& prefix, const std::string& body,
+                     const Vec2& p, const std::string& what) {
+  BodyPoint bp;
+  if (body == "ground") {
+    bp.fixed = p;
+    return bp;
+  }
+  bp.body = find_body(m, prefix, body, what);
+  const Body& b = m.bodies[bp.body];
+  if (b.geometry.size() >= 2) {
+    const Vec2 gr = on_first_two_nodes(b.geometry, p);
+    bp.ci = 0;
+    bp.cj = 1;
+    bp.gamma = gr.x();
+    bp.rho = gr.y();
+  } else if ((p - b.geometry[0]).norm() > 1e-12 * m.scale) {
+    throw Error(what + ": body '" + b.name + "' has one node: the point must be the node", b.name);
+  }
+  return bp;
+}
+
+namespace {
+
+void add_points(const Flat& flat, Model& m) {
+  for (const auto& p : flat.points) {
+    const std::string name = p.prefix + p.def.name;
+    check_name(p.def.name, "point");
+    m.points.push_back(
+        {name, body_point(m, p.prefix, p.def.body, p.def.point, "point '" + name + "'")});
+  }
+}
+
+// The loads' laws, compiled once every quantity they may read is known (same order as the loads).
+void compile_laws(const Flat& flat, Model& m) {
+  using K = Quantity::Kind;
+  for (size_t k = 0; k < flat.forces.size(); ++k) {
+    const auto& f = flat.forces[k];
+    const std::string what = "force '" + m.forces[k].name + "'";
+    m.forces[k].fx = compile_law(m, f.def.fx, what + ".fx", m.forces[k].name, f.prefix);
+    m.forces[k].fy = compile_law(m, f.def.fy, what + ".fy", m.forces[k].name, f.prefix);
+  }
+  for (size_t k = 0; k < flat.torques.size(); ++k)
+    m.torques[k].torque =
+        compile_law(m, flat.torques[k].def.torque, "torque '" + m.torques[k].name + "'",
+                    m.torques[k].name, flat.torques[k].prefix);
+  for (size_t k = 0; k < flat.springs.size(); ++k) {
+    SpringLoad& s = m.springs[k];
+    Quantity q;
+    q.a = s.a;
+    q.b = s.b;
+    q.kind = K::distance;
+    const std::vector<std::pair<std::string, Quantity>> locals = {{"length", q},
+                                                                  {"extension",
+                                                                   [&] {
+                                                                     Quantity e = q;
+                                                                     e.value = s.rest_length;
+                                                                     return e;
+                                                                   }()},
+                                                                  {"rate", [&] {
+                                                                     Quantity r = q;
+                                                                     r.kind = K::distance_rate;
+                                                                     return r;
+                                                                   }()}};
+    s.tension = compile_law(m, flat.springs[k].def.tension, "spring '" + s.name + "'.tension",
+                            s.name, flat.springs[k].prefix, locals);
+  }
+  for (size_t k = 0; k < flat.torsional.size(); ++k) {
+    TorsionalLoad& l = m.torsional_springs[k];
+    Quantity a;
+    a.kind = K::relative_angle;
+    a.body1 = l.body1;
+    a.body2 = l.body2;
+    a.value = l.rest;
+    Quantity r = a;
+    r.kind = K::relative_rate;
+    l.torque =
+        compile_law(m, flat.torsional[k].def.torque, "torsional spring '" + l.name + "'.torque",
+                    l.name, flat.torsional[k].prefix, {{"angle", a}, {"rate", r}});
   }
 }
 
@@ -148,6 +217,9 @@ void add_loads(const Flat& flat, const Elements& el, const Reduced& red, Model& 
   add_forces(flat, m);
   add_springs(flat, m);
   add_torsional_springs(flat, el, red, m);
+  add_points(flat, m);
+  add_quantities(flat, el, red, m);
+  compile_laws(flat, m);
 }
 
 }  // namespace mo2d::build

@@ -3,7 +3,18 @@
 
 #include <cmath>
 
+#include "mo2d/law.hpp"
+
 namespace mo2d {
+
+Law::Law(Signal fn) {
+  if (!fn) return;
+  f = [fn = std::move(fn)](std::span<const Jet> /*x*/, Jet t) { return Jet(fn(t.v)); };
+}
+
+Law Law::constant(double value) {
+  return Law({}, [value](std::span<const Jet> /*x*/, Jet /*t*/) { return Jet(value); });
+}
 
 Vec2 Placement::apply(const Vec2& p) const {
   const double c = std::cos(angle), s = std::sin(angle);
@@ -60,6 +71,10 @@ System& System::add_torsional_spring(TorsionalSpringDef spring) {
 }
 System& System::add_instance(std::string name, const System& sub, Placement placement) {
   instances_.push_back({std::move(name), std::make_shared<const System>(sub), placement});
+  return *this;
+}
+System& System::add_point(PointDef point) {
+  points_.push_back(std::move(point));
   return *this;
 }
 System& System::set_gravity(Vec2 g) {

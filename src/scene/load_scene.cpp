@@ -146,9 +146,48 @@ void read_initial(const Reader& r, const YAML::Node& node, Scene& scene) {
 
 void read_efforts(const Reader& r, const YAML::Node& node, Scene& scene) {
   for (const auto& [key, value] : r.entries(node, "efforts")) {
-    auto e = r.time_function(value, "efforts." + key.Scalar());
-    scene.efforts.emplace_back(key.Scalar(), [e](double t) { return e->evaluate({}, Jet(t)).v; });
+    scene.efforts.emplace_back(key.Scalar(), state_law(r, value, "efforts." + key.Scalar(),
+                                                       key.Scalar(), &scene.law_labels));
     scene.labels.push_back({key.Scalar(), LabelUse::Kind::input, r.at(key)});
+  }
+}
+
+// controllers: {input: {coordinate, reference, kp, kd, feed_forward: inverse | expression of t}}
+void read_controllers(const Reader& r, const YAML::Node& node, Scene& scene) {
+  for (const auto& [key, value] : r.entries(node, "controllers")) {
+    const std::string what = "controllers." + key.Scalar();
+    r.check_keys(value, {"coordinate", "rate", "reference", "kp", "kd", "feed_forward"}, what);
+    SceneController c;
+    c.input = key.Scalar();
+    c.where = r.at(key);
+    const YAML::Node coordinate = r.required(value, "coordinate", what);
+    c.control.coordinate = r.string(coordinate, what + ".coordinate");
+    scene.labels.push_back({c.control.coordinate, LabelUse::Kind::coordinate, r.at(coordinate)});
+    if (value["rate"].IsDefined()) {
+      c.control.rate = r.string(value["rate"], what + ".rate");
+      scene.labels.push_back({c.control.rate, LabelUse::Kind::rate, r.at(value["rate"])});
+    }
+    auto ref = r.time_function(r.required(value, "reference", what), what + ".reference");
+    c.control.reference = [ref](Jet t) { return ref->evaluate({}, t); };
+    c.control.kp = r.number_or(value, "kp", 0.0, what);
+    c.control.kd = r.number_or(value, "kd", 0.0, what);
+    for (const char* gain : {"kp", "kd"})
+      if (value[gain].IsDefined() && r.number(value[gain], what + "." + gain) < 0)
+        r.fail(value[gain], what + "." + gain + ": must be >= 0");
+    if (const YAML::Node ff = value["feed_forward"]; ff.IsDefined()) {
+      if (ff.IsScalar() && ff.Scalar() == "inverse") {
+        c.feed_forward_inverse = true;
+      } else {
+        auto e = r.time_function(ff, what + ".feed_forward");
+        c.control.feed_forward = [e](double t) { return e->evaluate({}, Jet(t)).v; };
+      }
+    }
+    for (const auto& [label, law] : scene.efforts)
+      if (label == c.input)
+        r.fail(key, what + ": input '" + c.input +
+                        "' has an effort too (give its open-loop part as feed_forward)");
+    scene.labels.push_back({c.input, LabelUse::Kind::input, r.at(key)});
+    scene.controllers.push_back(std::move(c));
   }
 }
 
@@ -264,10 +303,11 @@ Scene parse_scene(std::string_view yaml, const std::string& file_name,
       throw SceneError(Location{file_name, 1, 1},
                        std::string("a scene is a map of keys (name, bodies, joints, ...), got ") +
                            type_name(doc));
-    r.check_keys(doc,
-                 {"name", "parameters", "ground", "bodies", "joints", "coordinates", "constraints",
-                  "loads", "subsystems", "instances", "motion", "initial", "efforts", "run"},
-                 "scene");
+    r.check_keys(
+        doc,
+        {"name", "parameters", "ground", "bodies", "joints", "coordinates", "constraints", "loads",
+         "subsystems", "instances", "motion", "initial", "efforts", "controllers", "run"},
+        "scene");
     scene.name = doc["name"].IsDefined() ? r.string(doc["name"], "name") : "scene";
     read_parameters(r, doc["parameters"], overrides, scene);
     scene.system = System(scene.name);
@@ -280,7 +320,9 @@ Scene parse_scene(std::string_view yaml, const std::string& file_name,
     read_motion(r, doc["motion"], scene);
     read_initial(r, doc["initial"], scene);
     read_efforts(r, doc["efforts"], scene);
+    read_controllers(r, doc["controllers"], scene);
     scene.elements = std::move(info.elements);
+    scene.law_labels.insert(scene.law_labels.end(), info.law_labels.begin(), info.law_labels.end());
     read_run(r, doc["run"], scene.run, scene.elements);
   } catch (const YAML::DeepRecursion& e) {  // yaml-cpp's depth guard (its message: "bad file")
     throw SceneError(Location{file_name, e.mark.line + 1, e.mark.column + 1},

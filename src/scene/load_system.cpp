@@ -225,10 +225,45 @@ void read_constraints(Context& c, const YAML::Node& node) {
   }
 }
 
-Signal signal(const Reader& r, const YAML::Node& node, const std::string& what) {
+}  // namespace
+
+Law state_law(const Reader& r, const YAML::Node& node, const std::string& what,
+              const std::string& element, std::vector<std::pair<std::string, Location>>* uses) {
   if (!node.IsDefined()) return {};
-  auto e = r.time_function(node, what);
-  return [e](double t) { return e->evaluate({}, Jet(t)).v; };
+  auto e = std::make_shared<Expression>(r.expression(node, what));
+  // names: parameters, then t, then the quantities of the state it reads (its arguments, in
+  // order of first use), which build_model resolves
+  std::vector<std::string> args;
+  try {
+    e->bind([&](const std::string& n) {
+      if (auto b = r.parameter_binding(n); b.kind != Binding::Kind::unbound) return b;
+      if (n == "t") return Binding{Binding::Kind::time, 0, -1};
+      auto it = std::find(args.begin(), args.end(), n);
+      if (it == args.end()) it = args.insert(args.end(), n);
+      return Binding{Binding::Kind::variable, 0, static_cast<int>(it - args.begin())};
+    });
+  } catch (const ExpressionError& err) {
+    r.fail_expression(node, err, what);
+  }
+  if (uses)  // where each argument is written: an unknown one is reported at its column
+    for (const auto& a : args) {
+      Location l = r.at(node);
+      const std::string& text = node.Scalar();
+      const size_t at = text.find(a);
+      if (l.line > 0 && at != std::string::npos && text.find('\n') == std::string::npos)
+        l.column += (node.Tag() == "!" ? 1 : 0) + static_cast<int>(at);
+      uses->emplace_back(element + "/" + a, l);
+    }
+  if (args.empty()) {  // a function of time only
+    return Law([e](double t) { return e->evaluate({}, Jet(t)).v; });
+  }
+  return Law(std::move(args), [e](std::span<const Jet> x, Jet t) { return e->evaluate(x, t); });
+}
+
+namespace {
+
+Law law(Context& c, const YAML::Node& node, const std::string& what, const std::string& element) {
+  return state_law(c.r, node, what, element, &c.info.law_labels);
 }
 
 double nonnegative(const Reader& r, const YAML::Node& map, const char* key,
@@ -236,6 +271,17 @@ double nonnegative(const Reader& r, const YAML::Node& map, const char* key,
   const double v = r.number_or(map, key, 0.0, what);
   if (v < 0) r.fail(map[key], what + "." + key + ": must be >= 0");
   return v;
+}
+
+SpringActs spring_acts(const Reader& r, const YAML::Node& node, const std::string& what) {
+  if (!node.IsDefined()) return SpringActs::both;
+  const std::string v = r.string(node, what + ".acts");
+  if (v == "both") return SpringActs::both;
+  if (v == "tension") return SpringActs::tension_only;
+  if (v == "compression") return SpringActs::compression_only;
+  const std::vector<std::string> names = {"both", "tension", "compression"};
+  r.fail(node, what + ".acts: '" + v + "' is not one of both, tension, compression" +
+                   did_you_mean(v, names));
 }
 
 void read_loads(Context& c, const YAML::Node& node, bool root) {
@@ -255,8 +301,8 @@ void read_loads(Context& c, const YAML::Node& node, bool root) {
     f.name = key.Scalar();
     f.body = body_ref(c, value, "body", what, false);
     f.point = r.vec2(r.required(value, "point", what), what + ".point");
-    f.fx = signal(r, value["fx"], what + ".fx");
-    f.fy = signal(r, value["fy"], what + ".fy");
+    f.fx = law(c, value["fx"], what + ".fx", f.name);
+    f.fy = law(c, value["fy"], what + ".fy", f.name);
     c.info.elements.emplace_back(f.name, r.at(key));
     c.out.add_force(std::move(f));
   }
@@ -267,7 +313,7 @@ void read_loads(Context& c, const YAML::Node& node, bool root) {
     TorqueDef t;
     t.name = key.Scalar();
     t.body = body_ref(c, value, "body", what, false);
-    t.torque = signal(r, r.required(value, "torque", what), what + ".torque");
+    t.torque = law(c, r.required(value, "torque", what), what + ".torque", t.name);
     c.info.elements.emplace_back(t.name, r.at(key));
     c.out.add_torque(std::move(t));
   }
@@ -275,7 +321,8 @@ void read_loads(Context& c, const YAML::Node& node, bool root) {
     check_plain_name(r, key, "spring");
     const std::string what = "spring '" + key.Scalar() + "'";
     r.check_keys(value,
-                 {"body_a", "point_a", "body_b", "point_b", "rest_length", "stiffness", "damping"},
+                 {"body_a", "point_a", "body_b", "point_b", "rest_length", "stiffness", "damping",
+                  "tension", "acts"},
                  what);
     SpringDef s;
     s.name = key.Scalar();
@@ -286,13 +333,18 @@ void read_loads(Context& c, const YAML::Node& node, bool root) {
     s.rest_length = nonnegative(r, value, "rest_length", what);
     s.stiffness = nonnegative(r, value, "stiffness", what);
     s.damping = nonnegative(r, value, "damping", what);
+    s.tension = law(c, value["tension"], what + ".tension", s.name);
+    if (s.tension && (value["stiffness"].IsDefined() || value["damping"].IsDefined()))
+      r.fail(value["tension"],
+             what + ": a tension law replaces stiffness and damping (give one or the other)");
+    s.acts = spring_acts(r, value["acts"], what);
     c.info.elements.emplace_back(s.name, r.at(key));
     c.out.add_spring(std::move(s));
   }
   for (const auto& [key, value] : r.entries(node["torsional_springs"], "loads.torsional_springs")) {
     check_plain_name(r, key, "torsional spring");
     const std::string what = "torsional spring '" + key.Scalar() + "'";
-    r.check_keys(value, {"joint", "stiffness", "damping", "rest"}, what);
+    r.check_keys(value, {"joint", "stiffness", "damping", "rest", "torque"}, what);
     TorsionalSpringDef s;
     s.name = key.Scalar();
     const YAML::Node joint = r.required(value, "joint", what);
@@ -303,6 +355,10 @@ void read_loads(Context& c, const YAML::Node& node, bool root) {
     s.stiffness = nonnegative(r, value, "stiffness", what);
     s.damping = nonnegative(r, value, "damping", what);
     if (value["rest"].IsDefined()) s.rest = r.number(value["rest"], what + ".rest");
+    s.torque = law(c, value["torque"], what + ".torque", s.name);
+    if (s.torque && (value["stiffness"].IsDefined() || value["damping"].IsDefined()))
+      r.fail(value["torque"],
+             what + ": a torque law replaces stiffness and damping (give one or the other)");
     c.info.elements.emplace_back(s.name, r.at(key));
     c.out.add_torsional_spring(std::move(s));
   }
@@ -343,6 +399,8 @@ void read_instances(Context& c, const YAML::Node& node, Subsystems& lib) {
     for (const auto& n : sub.info.nodes) c.info.nodes.push_back(name + "." + n);
     for (const auto& b : sub.info.bodies) c.info.bodies.push_back(name + "." + b);
     for (const auto& [e, l] : sub.info.elements) c.info.elements.emplace_back(name + "." + e, l);
+    for (const auto& [e, l] : sub.info.law_labels)
+      c.info.law_labels.emplace_back(name + "." + e, l);
     c.info.elements.emplace_back(name, r.at(key));
   }
 }

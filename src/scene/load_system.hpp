@@ -18,6 +18,8 @@ struct SystemInfo {
   std::vector<std::string> nodes{};
   std::vector<std::string> bodies{};
   std::vector<std::pair<std::string, Location>> elements{};
+  // where each argument of a load's law is written: "element/label" (element: full name)
+  std::vector<std::pair<std::string, Location>> law_labels{};
 };
 
 struct BuiltSubsystem {
@@ -35,6 +37,12 @@ struct Subsystems {
 
 inline constexpr std::initializer_list<const char*> kSystemKeys = {
     "ground", "bodies", "joints", "coordinates", "constraints", "loads", "instances"};
+
+// A law from an expression of t, the parameters and quantities of the state (its other names,
+// resolved by build_model); a function of time only when it names none. `uses` (if given)
+// receives where each argument is written, as "element/label".
+Law state_law(const Reader& r, const YAML::Node& node, const std::string& what,
+              const std::string& element, std::vector<std::pair<std::string, Location>>* uses);
 
 // Fill `out` from `block`; root: gravity is allowed in loads.
 SystemInfo read_system(const Reader& r, const YAML::Node& block, System& out, bool root,

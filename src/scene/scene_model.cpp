@@ -2,6 +2,7 @@
 // line of the scene that caused them.
 #include <algorithm>
 #include <cctype>
+#include <cmath>
 
 #include "mo2d/expression.hpp"
 #include "mo2d/scene.hpp"
@@ -34,6 +35,14 @@ namespace {
 
 const Location* element_location(const Scene& s, const std::string& element,
                                  const std::string& message) {
+  // an unknown quantity in a law: where the law writes it
+  const std::string unknown = "unknown quantity '";
+  if (const size_t at = message.find(unknown); at != std::string::npos) {
+    const size_t from = at + unknown.size(), to = message.find('\'', from);
+    const std::string key = element + "/" + message.substr(from, to - from);
+    for (const auto& [name, where] : s.law_labels)
+      if (name == key) return &where;
+  }
   for (const auto& [name, where] : s.elements)
     if (name == element) return &where;
   // otherwise the first element the message names ("coordinate 'crank.angle': ...")
@@ -101,6 +110,59 @@ InverseOptions inverse_options(const Scene& scene) {
   return o;
 }
 
+namespace {
+
+// The controllers' laws into o.efforts; the feed-forward from inverse dynamics is shared by the
+// controllers that ask for it (their references prescribe the motion).
+void add_controllers(const Scene& scene, const Model& model, ForwardOptions& o) {
+  std::vector<Prescribed> references;
+  for (const SceneController& c : scene.controllers)
+    if (c.feed_forward_inverse) references.push_back({c.control.coordinate, c.control.reference});
+  std::vector<std::function<double(double)>> ff;
+  if (!references.empty()) {
+    try {
+      InverseOptions io = inverse_options(scene);
+      ff = efforts_from_inverse(model, references, io);
+    } catch (const Error& e) {
+      throw SceneError(scene.controllers.front().where,
+                       std::string("controllers: feed_forward: inverse: ") + e.what());
+    }
+  }
+  for (const SceneController& c : scene.controllers) {
+    PdControl pd = c.control;
+    for (size_t k = 0; k < model.inputs.size(); ++k)
+      if (model.inputs[k].label == c.input) {
+        if (c.feed_forward_inverse) pd.feed_forward = ff[k];
+        o.efforts[k] = pd_control(pd);
+        try {
+          (void)compile_law(model, o.efforts[k], "controllers." + c.input, c.input);
+        } catch (const Error& e) {
+          throw SceneError(c.where, e.what());
+        }
+      }
+  }
+}
+
+}  // namespace
+
+std::vector<TrackingError> tracking_errors(const Scene& scene, const Trajectory& r) {
+  std::vector<TrackingError> out;
+  for (const SceneController& c : scene.controllers) {
+    TrackingError e{c.input, c.control.coordinate};
+    const Eigen::VectorXd x = r.q0.col(r.column(c.control.coordinate));
+    for (Eigen::Index k = 0; k < r.time.size(); ++k) {
+      const double err = x[k] - (c.control.reference ? c.control.reference(Jet(r.time[k])).v : 0);
+      if (std::abs(err) > std::abs(e.max_error) || k == 0) {
+        e.max_error = err;
+        e.t_max = r.time[k];
+      }
+      e.final_error = err;
+    }
+    out.push_back(e);
+  }
+  return out;
+}
+
 ForwardOptions forward_options(const Scene& scene, const Model& model) {
   ForwardOptions o;
   o.t0 = scene.run.t0;
@@ -115,9 +177,18 @@ ForwardOptions forward_options(const Scene& scene, const Model& model) {
   o.max_seconds = scene.run.max_seconds;
   o.max_memory = scene.run.max_memory;
   o.efforts.resize(model.inputs.size());
-  for (const auto& [label, signal] : scene.efforts)
+  for (const auto& [label, law] : scene.efforts)
     for (size_t k = 0; k < model.inputs.size(); ++k)
-      if (model.inputs[k].label == label) o.efforts[k] = signal;
+      if (model.inputs[k].label == label) {
+        o.efforts[k] = law;
+        try {  // the quantities it reads, reported at the scene's line
+          (void)compile_law(model, law, "efforts." + label, label);
+        } catch (const Error& e) {
+          const Location* where = element_location(scene, e.element(), e.what());
+          throw SceneError(where ? *where : Location{scene.file, 0, 0}, e.what());
+        }
+      }
+  add_controllers(scene, model, o);
   return o;
 }
 

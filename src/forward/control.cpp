@@ -1,0 +1,42 @@
+// PD control as an effort law (mo2d/control.hpp).
+#include "mo2d/control.hpp"
+
+#include <cmath>
+#include <utility>
+#include <vector>
+
+#include "mo2d/error.hpp"
+
+namespace mo2d {
+namespace {
+bool ends_with(const std::string& s, const std::string& tail) {
+  return s.size() >= tail.size() && s.compare(s.size() - tail.size(), tail.size(), tail) == 0;
+}
+}  // namespace
+
+std::string rate_label(const std::string& coordinate) {
+  const std::string stem = coordinate.substr(0, coordinate.size() - 1);
+  if (ends_with(coordinate, ".x")) return stem + "vx";
+  if (ends_with(coordinate, ".y")) return stem + "vy";
+  if (ends_with(coordinate, ".q")) return stem + "v";
+  return coordinate + ".rate";
+}
+
+Law pd_control(PdControl c) {
+  for (auto [gain, name] : {std::pair{c.kp, "kp"}, std::pair{c.kd, "kd"}})
+    if (!std::isfinite(gain) || gain < 0)
+      throw Error("PD control of '" + c.coordinate + "': " + name + " must be finite and >= 0",
+                  c.coordinate);
+  if (c.coordinate.empty()) throw Error("PD control: no coordinate", "coordinate");
+  std::vector<std::string> args = {c.coordinate,
+                                   c.rate.empty() ? rate_label(c.coordinate) : c.rate};
+  auto f = [c = std::move(c)](std::span<const Jet> x, Jet t) {
+    const Jet r = c.reference ? c.reference(Jet(t.v, 1, 0)) : Jet();
+    const double ff = c.feed_forward ? c.feed_forward(t.v) : 0.0;
+    // r.d is r'(t) exactly; the result's derivatives are along the arguments only
+    return Jet(ff) + c.kp * (Jet(r.v) - x[0]) + c.kd * (Jet(r.d) - x[1]);
+  };
+  return Law(std::move(args), std::move(f));
+}
+
+}  // namespace mo2d
