@@ -62,6 +62,13 @@ struct LabelUse {
   Location where{};
 };
 
+// A label read by the expression of an element (a constraint), with the instance prefixes.
+struct ExpressionLabel {
+  std::string label{};
+  std::string element{};
+  Location where{};
+};
+
 struct Scene {
   std::string file{};
   std::string name{};
@@ -74,6 +81,9 @@ struct Scene {
   std::vector<LabelUse> labels{};
   // element name -> definition (run keys as "run.t0", "run.step", ...)
   std::vector<std::pair<std::string, Location>> elements{};
+  // labels read by constraint expressions, so that a label the model refuses is reported at its
+  // column
+  std::vector<ExpressionLabel> expression_labels{};
 };
 
 // A parameter override "name=value" (value: an expression of the other parameters).

@@ -256,6 +256,7 @@ Scene parse_scene(std::string_view yaml, const std::string& file_name,
   using namespace scene_detail;
   Reader r;
   r.file = file_name;
+  r.source = yaml;
   Scene scene;
   scene.file = file_name;
   try {
@@ -281,6 +282,7 @@ Scene parse_scene(std::string_view yaml, const std::string& file_name,
     read_initial(r, doc["initial"], scene);
     read_efforts(r, doc["efforts"], scene);
     scene.elements = std::move(info.elements);
+    scene.expression_labels = std::move(info.labels);
     read_run(r, doc["run"], scene.run, scene.elements);
   } catch (const YAML::DeepRecursion& e) {  // yaml-cpp's depth guard (its message: "bad file")
     throw SceneError(Location{file_name, e.mark.line + 1, e.mark.column + 1},

@@ -18,6 +18,8 @@ struct SystemInfo {
   std::vector<std::string> nodes{};
   std::vector<std::string> bodies{};
   std::vector<std::pair<std::string, Location>> elements{};
+  // labels read by constraint expressions, where each is written (Scene::expression_labels)
+  std::vector<ExpressionLabel> labels{};
 };
 
 struct BuiltSubsystem {
