@@ -47,6 +47,8 @@ class Expression {
   const std::string& text() const { return text_; }
   // Names the expression uses (not functions, not pi), unique, in order of first use.
   std::vector<std::string> names() const;
+  // 1-based column of the first use of `name` in the text (0 if unused).
+  int column(std::string_view name) const;
   // Resolve every name; an unbound one throws ExpressionError at its column, with a
   // "did you mean" suggestion taken from `candidates`.
   void bind(const std::function<Binding(const std::string& name)>& resolve,

@@ -72,6 +72,13 @@ struct SceneController {
   Location where{};
 };
 
+// A label read by the expression of an element (a constraint), with the instance prefixes.
+struct ExpressionLabel {
+  std::string label{};
+  std::string element{};
+  Location where{};
+};
+
 struct Scene {
   std::string file{};
   std::string name{};
@@ -88,6 +95,9 @@ struct Scene {
   std::vector<std::pair<std::string, Location>> elements{};
   // "element/label" -> where a law (a load's, an effort's) names a quantity of the state
   std::vector<std::pair<std::string, Location>> law_labels{};
+  // labels read by constraint expressions, so that a label the model refuses is reported at its
+  // column
+  std::vector<ExpressionLabel> expression_labels{};
 };
 
 // A parameter override "name=value" (value: an expression of the other parameters).

@@ -116,12 +116,20 @@ struct PositionConstraintDef {
   std::function<Jet(std::span<const Jet> x, Jet t)> psi{};
 };
 
-// User constraint at velocity level, linear in the quasi-velocities: g(x, v, t) = 0.
+// User constraint at velocity level, linear in the quasi-velocities: g(x, v, t) = 0 (a simple
+// non-holonomic invariant, Orsino eq. 2.11: A q1 + b = 0 with A, b functions of q0 and t), e.g.
+// rolling without slipping. Give the variables in one of two ways:
+//  - coords + rates, and g(x, v, t) with x[k] = coords[k], v[k] = rates[k];
+//  - labels (either kind, in any order), and g_labels(a, t) with a[k] the value of labels[k]:
+//    build_model sorts each label into a coordinate or a quasi-velocity (the form scene files use).
+// build_model refuses a g that is not linear in the rates at the initial configuration.
 struct VelocityConstraintDef {
   std::string name{};
   std::vector<std::string> coords{};  // coordinate labels the coefficients depend on
   std::vector<std::string> rates{};   // quasi-velocity labels it is linear in
   std::function<Jet(std::span<const Jet> x, std::span<const Jet> v, Jet t)> g{};
+  std::vector<std::string> labels{};  // coordinate and quasi-velocity labels, sorted by build_model
+  std::function<Jet(std::span<const Jet> a, Jet t)> g_labels{};
 };
 
 // A force applied at a point fixed in a body (given in the System's frame at the initial

@@ -182,6 +182,18 @@ struct JointReactions {
 JointReactions add_rows(const Flat& flat, const Elements& el, const Reduced& red, Numbering& num,
                         Model& m);
 
+// A velocity constraint given by labels (VelocityConstraintDef::labels, g_labels), as coords,
+// rates and g: each label sorted by the model's coordinate and quasi-velocity labels (seen from
+// the instance `prefix`); an Error naming a label that is neither (with a suggestion).
+VelocityConstraintDef sort_velocity_labels(const Model& m, const std::string& prefix,
+                                           const VelocityConstraintDef& def,
+                                           const std::string& what);
+// Refuses a compiled velocity constraint whose g is not affine in its rates (eq. 2.11) at the
+// configuration q0 (t = 0), naming the rate (def.rates) it is not linear in.
+void check_linear_in_rates(const Constraint::UserVelocity& c, const VelocityConstraintDef& def,
+                           const Eigen::VectorXd& q0, const std::string& what,
+                           const std::string& name);
+
 // ---- 6. loads -----------------------------------------------------------------------------------
 
 // m.forces, m.torques, m.springs, m.torsional_springs, m.points, then m.quantities (the derived

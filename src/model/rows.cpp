@@ -249,7 +249,7 @@ void add_coordinate_rows(const Flat& flat, Numbering& num, Model& m) {
   }
 }
 
-void add_user_rows(const Flat& flat, Model& m) {
+void add_user_rows(const Flat& flat, const Numbering& num, Model& m) {
   for (const auto& pc : flat.pos) {
     const std::string name = pc.prefix + pc.def.name;
     const std::string what = "constraint '" + name + "'";
@@ -267,16 +267,19 @@ void add_user_rows(const Flat& flat, Model& m) {
   for (const auto& vc : flat.vel) {
     const std::string name = vc.prefix + vc.def.name;
     const std::string what = "constraint '" + name + "'";
-    if (!vc.def.g) throw Error(what + " has no function", name);
-    if (vc.def.coords.size() > static_cast<size_t>(detail::kMaxUserArgs) ||
-        vc.def.rates.size() > static_cast<size_t>(detail::kMaxUserArgs))
+    const VelocityConstraintDef def =
+        vc.def.g_labels ? sort_velocity_labels(m, vc.prefix, vc.def, what) : vc.def;
+    if (!def.g) throw Error(what + " has no function", name);
+    if (def.coords.size() > static_cast<size_t>(detail::kMaxUserArgs) ||
+        def.rates.size() > static_cast<size_t>(detail::kMaxUserArgs))
       throw Error(what + " has more than 32 arguments", name);
     Constraint::UserVelocity d;
-    d.g = vc.def.g;
-    for (const auto& a : vc.def.coords)
+    d.g = def.g;
+    for (const auto& a : def.coords)
       d.args.push_back(m.rate_refs[find_coordinate(m, vc.prefix, a, what)]);
-    for (const auto& a : vc.def.rates)
+    for (const auto& a : def.rates)
       d.rates.push_back(m.rate_refs[find_rate(m, vc.prefix, a, what)]);
+    check_linear_in_rates(d, def, num.q0, what, name);
     Constraint c{.name = name, .owner = vc.owner, .def = std::move(d)};
     const int ci = add_constraint(m, std::move(c), 0, 1, {}, {""});
     m.reactions.push_back({name + ".lambda", m.constraints[ci].row1, 1});
@@ -293,7 +296,7 @@ JointReactions add_rows(const Flat& flat, const Elements& el, const Reduced& red
   add_prismatic_rows(flat, el, red, num, m, out);
   add_slot_rows(flat, el, red, num, m);
   add_coordinate_rows(flat, num, m);
-  add_user_rows(flat, m);
+  add_user_rows(flat, num, m);
   return out;
 }
 

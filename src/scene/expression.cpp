@@ -236,6 +236,13 @@ std::vector<std::string> Expression::names() const {
   return out;
 }
 
+int Expression::column(std::string_view name) const {
+  int best = 0;
+  for (const auto& n : nodes_)
+    if (n.op == Op::name && n.name == name && (best == 0 || n.column < best)) best = n.column;
+  return best;
+}
+
 void Expression::bind(const std::function<Binding(const std::string&)>& resolve,
                       std::span<const std::string> candidates) {
   for (auto& n : nodes_) {

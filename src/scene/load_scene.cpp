@@ -295,6 +295,7 @@ Scene parse_scene(std::string_view yaml, const std::string& file_name,
   using namespace scene_detail;
   Reader r;
   r.file = file_name;
+  r.source = yaml;
   Scene scene;
   scene.file = file_name;
   try {
@@ -323,6 +324,7 @@ Scene parse_scene(std::string_view yaml, const std::string& file_name,
     read_controllers(r, doc["controllers"], scene);
     scene.elements = std::move(info.elements);
     scene.law_labels.insert(scene.law_labels.end(), info.law_labels.begin(), info.law_labels.end());
+    scene.expression_labels = std::move(info.labels);
     read_run(r, doc["run"], scene.run, scene.elements);
   } catch (const YAML::DeepRecursion& e) {  // yaml-cpp's depth guard (its message: "bad file")
     throw SceneError(Location{file_name, e.mark.line + 1, e.mark.column + 1},

@@ -186,42 +186,60 @@ void read_coordinates(Context& c, const YAML::Node& node) {
   }
 }
 
+// Binds the names of a constraint expression: parameters, then t, then labels (the arguments, in
+// order of first use, each once); records where each label is written, for errors the model finds.
+std::vector<std::string> bind_labels(Context& c, const YAML::Node& text, Expression& e,
+                                     const std::string& element, const std::string& what) {
+  const Reader& r = c.r;
+  std::vector<std::string> args;
+  try {
+    e.bind([&](const std::string& n) {
+      if (auto b = r.parameter_binding(n); b.kind != Binding::Kind::unbound) return b;
+      if (n == "t") return Binding{Binding::Kind::time, 0, -1};
+      auto it = std::find(args.begin(), args.end(), n);
+      if (it == args.end()) it = args.insert(args.end(), n);
+      return Binding{Binding::Kind::variable, 0, static_cast<int>(it - args.begin())};
+    });
+  } catch (const ExpressionError& err) {
+    r.fail_expression(text, err, what);
+  }
+  for (const auto& a : args) c.info.labels.push_back({a, element, r.at_column(text, e.column(a))});
+  return args;
+}
+
+// psi: position level (PositionConstraintDef); g: velocity level, linear in the rates
+// (VelocityConstraintDef::labels, sorted into coordinates and quasi-velocities by build_model).
 void read_constraints(Context& c, const YAML::Node& node) {
   const Reader& r = c.r;
   for (const auto& [key, value] : r.entries(node, "constraints")) {
     check_plain_name(r, key, "constraint");
     const std::string what = "constraint '" + key.Scalar() + "'";
-    r.check_keys(value, {"psi"}, what);
-    const YAML::Node psi = r.required(value, "psi", what);
-    auto e = std::make_shared<Expression>(r.expression(psi, what + ".psi"));
-    PositionConstraintDef d;
-    d.name = key.Scalar();
-    // names: parameters, then t, then coordinate labels (the arguments, in order of first use)
-    try {
-      e->bind([&](const std::string& n) {
-        if (auto b = r.parameter_binding(n); b.kind != Binding::Kind::unbound) return b;
-        if (n == "t") return Binding{Binding::Kind::time, 0, -1};
-        d.args.push_back(n);
-        return Binding{Binding::Kind::variable, 0, static_cast<int>(d.args.size()) - 1};
-      });
-    } catch (const ExpressionError& err) {
-      r.fail_expression(psi, err, what + ".psi");
+    r.check_keys(value, {"psi", "g"}, what);
+    if (value["psi"].IsDefined() == value["g"].IsDefined())
+      r.fail(value, what + ": give exactly one of 'psi' (position level, psi(x, t) = 0) or 'g' " +
+                        "(velocity level, g linear in quasi-velocities = 0)");
+    const bool position = value["psi"].IsDefined();
+    const char* k = position ? "psi" : "g";
+    const YAML::Node text = value[k];
+    auto e = std::make_shared<Expression>(r.expression(text, what + "." + k));
+    std::vector<std::string> args = bind_labels(c, text, *e, key.Scalar(), what + "." + k);
+    if (args.empty())
+      r.fail(text, what + "." + k + ": a constraint must use at least one " +
+                       (position ? "coordinate" : "quasi-velocity"));
+    if (position) {
+      PositionConstraintDef d;
+      d.name = key.Scalar();
+      d.args = std::move(args);
+      d.psi = [e](std::span<const Jet> x, Jet t) { return e->evaluate(x, t); };
+      c.out.add_constraint(std::move(d));
+    } else {
+      VelocityConstraintDef d;
+      d.name = key.Scalar();
+      d.labels = std::move(args);
+      d.g_labels = [e](std::span<const Jet> a, Jet t) { return e->evaluate(a, t); };
+      c.out.add_constraint(std::move(d));
     }
-    // the same name used twice must map to one argument
-    std::vector<std::string> unique;
-    for (const auto& a : d.args)
-      if (std::find(unique.begin(), unique.end(), a) == unique.end()) unique.push_back(a);
-    e->bind([&](const std::string& n) {
-      if (auto b = r.parameter_binding(n); b.kind != Binding::Kind::unbound) return b;
-      if (n == "t") return Binding{Binding::Kind::time, 0, -1};
-      const auto it = std::find(unique.begin(), unique.end(), n);
-      return Binding{Binding::Kind::variable, 0, static_cast<int>(it - unique.begin())};
-    });
-    d.args = unique;
-    if (d.args.empty()) r.fail(psi, what + ".psi: a constraint must use at least one coordinate");
-    d.psi = [e](std::span<const Jet> x, Jet t) { return e->evaluate(x, t); };
-    c.info.elements.emplace_back(d.name, r.at(key));
-    c.out.add_constraint(std::move(d));
+    c.info.elements.emplace_back(key.Scalar(), r.at(key));
   }
 }
 
@@ -401,6 +419,8 @@ void read_instances(Context& c, const YAML::Node& node, Subsystems& lib) {
     for (const auto& [e, l] : sub.info.elements) c.info.elements.emplace_back(name + "." + e, l);
     for (const auto& [e, l] : sub.info.law_labels)
       c.info.law_labels.emplace_back(name + "." + e, l);
+    for (const auto& u : sub.info.labels)
+      c.info.labels.push_back({name + "." + u.label, name + "." + u.element, u.where});
     c.info.elements.emplace_back(name, r.at(key));
   }
 }

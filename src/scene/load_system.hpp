@@ -20,6 +20,8 @@ struct SystemInfo {
   std::vector<std::pair<std::string, Location>> elements{};
   // where each argument of a load's law is written: "element/label" (element: full name)
   std::vector<std::pair<std::string, Location>> law_labels{};
+  // labels read by constraint expressions, where each is written (Scene::expression_labels)
+  std::vector<ExpressionLabel> labels{};
 };
 
 struct BuiltSubsystem {

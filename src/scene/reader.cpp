@@ -120,13 +120,20 @@ Expression Reader::expression(const YAML::Node& node, const std::string& what) c
   }
 }
 
-void Reader::fail_expression(const YAML::Node& node, const ExpressionError& e,
-                             const std::string& what) const {
+Location Reader::at_column(const YAML::Node& node, int column) const {
   Location l = at(node);
   const bool quoted = node.Tag() == "!";  // yaml-cpp tags quoted scalars "!", plain ones "?"
+  const auto pos = static_cast<size_t>(node.Mark().pos);
+  const bool block = pos < source.size() && (source[pos] == '|' || source[pos] == '>');
+  if (l.line > 0 && !block && node.Scalar().find('\n') == std::string::npos)
+    l.column += (quoted ? 1 : 0) + column - 1;
+  return l;
+}
+
+void Reader::fail_expression(const YAML::Node& node, const ExpressionError& e,
+                             const std::string& what) const {
+  const Location l = at_column(node, e.column());
   const std::string& text = node.Scalar();
-  if (l.line > 0 && text.find('\n') == std::string::npos)
-    l.column += (quoted ? 1 : 0) + e.column() - 1;
   // quote the expression, but keep the one-line message readable
   const std::string shown = text.size() <= 80 ? text : text.substr(0, 77) + "...";
   throw SceneError(l, what + ": in expression '" + shown + "': " + e.what());

@@ -6,6 +6,7 @@
 #include <initializer_list>
 #include <memory>
 #include <string>
+#include <string_view>
 #include <unordered_map>
 #include <utility>
 #include <vector>
@@ -19,6 +20,7 @@ using Entries = std::vector<std::pair<YAML::Node, YAML::Node>>;  // (key, value)
 
 struct Reader {
   std::string file{};
+  std::string_view source{};                             // the YAML text (it outlives the reader)
   std::unordered_map<std::string, double> parameters{};  // evaluated
   std::vector<std::string> parameter_names{};
 
@@ -47,6 +49,9 @@ struct Reader {
                                                   const std::string& what) const;
   // Parse a scalar as an expression; errors point at the offending column of the file.
   Expression expression(const YAML::Node& node, const std::string& what) const;
+  // The file position of column `column` (1-based) of the expression text of `node`; of the
+  // indicator for a block scalar (| or >, whose text is not the file's).
+  Location at_column(const YAML::Node& node, int column) const;
   // Rethrow an ExpressionError from the text of `node` at its file position.
   [[noreturn]] void fail_expression(const YAML::Node& node, const ExpressionError& e,
                                     const std::string& what) const;

@@ -92,6 +92,11 @@ Model build_scene_model(const Scene& scene, const BuildOptions& options) {
   } catch (const SceneError&) {
     throw;
   } catch (const Error& e) {
+    // a label of a constraint expression, refused by the constraint ("constraint 'c': ...")
+    const std::string_view what = e.what();
+    for (const auto& u : scene.expression_labels)
+      if (u.label == e.element() && what.starts_with("constraint '" + u.element + "':"))
+        throw SceneError(u.where, e.what());
     const Location* where = element_location(scene, e.element(), e.what());
     throw SceneError(where ? *where : Location{scene.file, 0, 0}, e.what());
   }
