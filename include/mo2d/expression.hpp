@@ -3,12 +3,17 @@
 // motion s(t) written as text gives s, s_dot and s_ddot exactly (no finite differences).
 //
 // Grammar (usual precedence, '^' binds tighter than unary minus and is right-associative):
-//   expr    := term (('+' | '-') term)*
+//   expr    := sum (('<' | '<=' | '>' | '>=' | '==' | '!=') sum)?   (comparisons do not chain)
+//   sum     := term (('+' | '-') term)*
 //   term    := unary (('*' | '/') unary)*
 //   unary   := ('-' | '+') unary | power
 //   power   := primary ('^' unary)?
 //   primary := number | name | name '(' expr (',' expr)* ')' | '(' expr ')'
-// Functions: sin cos tan exp log sqrt abs (one argument), min max atan2 (two). Constant: pi.
+// Functions: sin cos tan exp log sqrt abs floor ceil round sign (one argument), min max atan2
+// hypot mod (two), clamp(x, lo, hi), if(c, a, b) and piecewise(c1, v1, c2, v2, ..., default),
+// plus the caller's own functions of one argument (tables). Constant: pi. A comparison is 1 or 0;
+// a condition holds when it is not 0 (NaN gives NaN); if() and piecewise() evaluate only the
+// branch they select.
 // Names may contain dots after the first character ("crank.angle"); they are bound by the caller
 // to constants (parameters), the time t or variables (coordinates of a user constraint).
 #include <functional>
@@ -32,6 +37,14 @@ class ExpressionError : public Error {
   int column_ = 0;
 };
 
+// A function of one argument the caller adds to expressions by name (a Table, ...): Jet in, Jet
+// out, so it must apply the chain rule (value, first and second derivative along the argument's
+// direction). Built-in names take precedence: give it a name that is not one.
+struct NamedFunction {
+  std::string name{};
+  std::function<Jet(Jet)> f{};
+};
+
 // What a name stands for.
 struct Binding {
   enum class Kind { unbound, constant, time, variable } kind = Kind::unbound;
@@ -41,8 +54,13 @@ struct Binding {
 
 class Expression {
  public:
-  // Throws ExpressionError with the column of the offending character.
-  static Expression parse(std::string_view text);
+  // Throws ExpressionError with the column of the offending character (an unknown function or
+  // a wrong number of arguments: the column of the function's name). `functions`: the caller's
+  // functions of one argument, copied into the expression where it calls them.
+  static Expression parse(std::string_view text, std::span<const NamedFunction> functions = {});
+  // The built-in function names (sin ... piecewise), and whether `name` is one of them.
+  static std::vector<std::string> function_names();
+  static bool is_function(std::string_view name);
 
   const std::string& text() const { return text_; }
   // Names the expression uses (not functions, not pi), unique, in order of first use.
@@ -59,12 +77,27 @@ class Expression {
   bool depends_on_time() const;
 
  private:
-  enum class Op { number, name, neg, add, sub, mul, div, pow, call1, call2 };
+  enum class Op {
+    number,
+    name,
+    neg,
+    add,
+    sub,
+    mul,
+    div,
+    pow,
+    compare,
+    select,
+    call1,
+    call2,
+    call3,
+    user
+  };
   struct Node {
     Op op = Op::number;
     double value = 0;
-    int a = -1, b = -1;  // children
-    int function = -1;   // call1/call2: index in the function tables
+    int a = -1, b = -1, c = -1;  // children (select: condition, then, else)
+    int function = -1;   // callN: index in the function tables; user: in functions_; compare: kind
     int column = 0;      // 1-based
     std::string name{};  // name
     Binding binding{};   // name
@@ -73,6 +106,7 @@ class Expression {
   friend class ExpressionParser;
   std::string text_{};
   std::vector<Node> nodes_{};
+  std::vector<NamedFunction> functions_{};  // the caller's functions this expression calls
   int root_ = -1;
 };
 

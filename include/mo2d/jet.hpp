@@ -101,4 +101,46 @@ inline Jet max(Jet a, Jet b) {
   return a.v >= b.v ? a : b;
 }
 
+// Piecewise-constant functions: derivatives 0 (between the jumps; there they do not exist).
+inline Jet floor(Jet a) {
+  return Jet(std::floor(a.v));
+}
+inline Jet ceil(Jet a) {
+  return Jet(std::ceil(a.v));
+}
+inline Jet round(Jet a) {  // half away from zero (std::round)
+  return Jet(std::round(a.v));
+}
+inline Jet sign(Jet a) {  // -1, 0 or 1; NaN stays NaN
+  return Jet(a.v > 0 ? 1.0 : a.v < 0 ? -1.0 : a.v == 0 ? 0.0 : a.v);
+}
+// Floored modulo x - y floor(x/y), like Python's %: the result has the sign of y (in [0, y) for
+// y > 0). The value comes from std::fmod (exact); between the jumps k = floor(x/y) is constant,
+// so the derivatives are x' - k y' and x'' - k y''. mod(x, 0) is NaN.
+inline Jet mod(Jet x, Jet y) {
+  double r = std::fmod(x.v, y.v);
+  if (r != 0 && ((r < 0) != (y.v < 0))) r += y.v;
+  if (r == y.v) r = 0;  // r + y rounded to y (x a tiny negative multiple of y): stay in [0, y)
+  const double k = std::round((x.v - r) / y.v);
+  return {r, x.d - k * y.d, x.dd - k * y.dd};
+}
+// min(max(x, lo), hi): the derivatives of the selected branch.
+inline Jet clamp(Jet x, Jet lo, Jet hi) {
+  return min(max(x, lo), hi);
+}
+// sqrt(x^2 + y^2) without overflow. At the origin (not differentiable) the one-sided derivatives
+// along the direction: |(x', y')| and (x' x'' + y' y'') / |(x', y')|, or |(x'', y'')| when the
+// first derivatives vanish.
+inline Jet hypot(Jet x, Jet y) {
+  const double h = std::hypot(x.v, y.v);
+  if (h == 0) {
+    const double n = std::hypot(x.d, y.d);
+    return {0, n, n == 0 ? std::hypot(x.dd, y.dd) : (x.d * x.dd + y.d * y.dd) / n};
+  }
+  // h h' = x x' + y y'; differentiated: h'^2 + h h'' = x'^2 + y'^2 + x x'' + y y''
+  const double d = (x.v * x.d + y.v * y.d) / h;
+  const double dd = (x.d * x.d + y.d * y.d + x.v * x.dd + y.v * y.dd - d * d) / h;
+  return {h, d, dd};
+}
+
 }  // namespace mo2d

@@ -14,4 +14,5 @@
 #include "mo2d/model.hpp"
 #include "mo2d/output.hpp"
 #include "mo2d/system.hpp"
+#include "mo2d/table.hpp"
 #include "mo2d/trajectory.hpp"

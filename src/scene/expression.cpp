@@ -5,6 +5,7 @@
 #include <cctype>
 #include <cmath>
 #include <cstdlib>
+#include <limits>
 #include <numbers>
 #include <numeric>
 
@@ -22,14 +23,57 @@ struct Function2 {
   const char* name;
   Jet (*f)(Jet, Jet);
 };
+struct Function3 {
+  const char* name;
+  Jet (*f)(Jet, Jet, Jet);
+};
 const Function1 kFunctions1[] = {
-    {"sin", [](Jet a) { return sin(a); }}, {"cos", [](Jet a) { return cos(a); }},
-    {"tan", [](Jet a) { return tan(a); }}, {"exp", [](Jet a) { return exp(a); }},
-    {"log", [](Jet a) { return log(a); }}, {"sqrt", [](Jet a) { return sqrt(a); }},
-    {"abs", [](Jet a) { return abs(a); }}};
+    {"sin", [](Jet a) { return sin(a); }},   {"cos", [](Jet a) { return cos(a); }},
+    {"tan", [](Jet a) { return tan(a); }},   {"exp", [](Jet a) { return exp(a); }},
+    {"log", [](Jet a) { return log(a); }},   {"sqrt", [](Jet a) { return sqrt(a); }},
+    {"abs", [](Jet a) { return abs(a); }},   {"floor", [](Jet a) { return floor(a); }},
+    {"ceil", [](Jet a) { return ceil(a); }}, {"round", [](Jet a) { return round(a); }},
+    {"sign", [](Jet a) { return sign(a); }}};
 const Function2 kFunctions2[] = {{"min", [](Jet a, Jet b) { return min(a, b); }},
                                  {"max", [](Jet a, Jet b) { return max(a, b); }},
-                                 {"atan2", [](Jet a, Jet b) { return atan2(a, b); }}};
+                                 {"atan2", [](Jet a, Jet b) { return atan2(a, b); }},
+                                 {"hypot", [](Jet a, Jet b) { return hypot(a, b); }},
+                                 {"mod", [](Jet a, Jet b) { return mod(a, b); }}};
+const Function3 kFunctions3[] = {{"clamp", [](Jet x, Jet lo, Jet hi) { return clamp(x, lo, hi); }}};
+// special forms, evaluated lazily: if(c, a, b), piecewise(c1, v1, ..., default)
+const char* const kSpecialForms[] = {"if", "piecewise"};
+
+enum Comparison { kLess, kLessEqual, kGreater, kGreaterEqual, kEqual, kNotEqual };
+
+Jet compare(int kind, double a, double b) {
+  if (std::isnan(a) || std::isnan(b)) return Jet(std::numeric_limits<double>::quiet_NaN());
+  bool r = false;
+  switch (kind) {
+    case kLess:
+      r = a < b;
+      break;
+    case kLessEqual:
+      r = a <= b;
+      break;
+    case kGreater:
+      r = a > b;
+      break;
+    case kGreaterEqual:
+      r = a >= b;
+      break;
+    case kEqual:
+      r = a == b;
+      break;
+    default:
+      r = a != b;
+      break;
+  }
+  return Jet(r ? 1.0 : 0.0);
+}
+
+std::string arguments(size_t n) {
+  return std::to_string(n) + (n == 1 ? " argument" : " arguments");
+}
 
 bool name_start(char c) {
   return std::isalpha(static_cast<unsigned char>(c)) || c == '_';
@@ -42,7 +86,8 @@ bool name_char(char c) {
 
 class ExpressionParser {
  public:
-  ExpressionParser(Expression& e, std::string_view text) : e_(e), s_(text) {}
+  ExpressionParser(Expression& e, std::string_view text, std::span<const NamedFunction> functions)
+      : e_(e), s_(text), user_(functions) {}
 
   void run() {
     skip();
@@ -87,7 +132,44 @@ class ExpressionParser {
     if (depth > kMaxDepth) fail("expression nested too deeply");
   }
 
+  // A comparison operator at pos_ (consumed), or -1.
+  int comparison() {
+    skip();
+    if (pos_ >= s_.size()) return -1;
+    const char c = s_[pos_];
+    const bool eq = pos_ + 1 < s_.size() && s_[pos_ + 1] == '=';
+    int kind = -1;
+    if (c == '<') kind = eq ? kLessEqual : kLess;
+    if (c == '>') kind = eq ? kGreaterEqual : kGreater;
+    if (c == '=') {
+      if (!eq) fail("'=' is not an operator: compare with '=='");
+      kind = kEqual;
+    }
+    if (c == '!') {
+      if (!eq) fail("'!' is not an operator: compare with '!=', negate a condition c with 1 - c");
+      kind = kNotEqual;
+    }
+    if (kind >= 0) pos_ += eq ? 2 : 1;
+    return kind;
+  }
   int expr(int depth) {
+    enter(depth);
+    const int left = sum(depth + 1);
+    skip();
+    const int col = column();
+    const int kind = comparison();
+    if (kind < 0) return left;
+    const int n = add(Expression::Op::compare, left, sum(depth + 1), col);
+    e_.nodes_[n].function = kind;
+    skip();
+    const size_t at = pos_;
+    if (comparison() >= 0) {
+      pos_ = at;
+      fail("comparisons do not chain: write a < b < c as (a < b) * (b < c)");
+    }
+    return n;
+  }
+  int sum(int depth) {
     enter(depth);
     int left = term(depth + 1);
     for (;;) {
@@ -165,29 +247,77 @@ class ExpressionParser {
     }
     fail(std::string("expected a number, a name or '(' but got '") + c + "'");
   }
+  int select(int condition, int then, int otherwise, int col) {
+    const int n = add(Expression::Op::select, condition, then, col);
+    e_.nodes_[n].c = otherwise;
+    return n;
+  }
   int call(const std::string& name, int col, int depth) {
     ++pos_;  // '('
     std::vector<int> args{expr(depth + 1)};
     while (accept(',')) args.push_back(expr(depth + 1));
     if (!accept(')')) fail("expected ',' or ')' in the arguments of " + name + "()");
-    for (int k = 0; k < static_cast<int>(std::size(kFunctions1)); ++k)
-      if (name == kFunctions1[k].name) {
-        if (args.size() != 1) throw ExpressionError(name + "() takes 1 argument", col);
-        const int n = add(Expression::Op::call1, args[0], -1, col);
-        e_.nodes_[n].function = k;
-        return n;
+    const size_t count = args.size();
+    auto arity = [&](size_t expected) {
+      if (count != expected)
+        throw ExpressionError(
+            name + "() takes " + arguments(expected) + ", got " + std::to_string(count), col);
+    };
+    if (name == "if") {
+      arity(3);
+      return select(args[0], args[1], args[2], col);
+    }
+    if (name == "piecewise") {
+      if (count < 3 || count % 2 == 0)
+        throw ExpressionError(
+            "piecewise() takes pairs of a condition and its value, then the default value: an "
+            "odd number of arguments (3, 5, ...), got " +
+                std::to_string(count),
+            col);
+      int out = args.back();  // piecewise(c1, v1, c2, v2, d) = if(c1, v1, if(c2, v2, d))
+      for (size_t k = count - 1; k >= 2; k -= 2) out = select(args[k - 2], args[k - 1], out, col);
+      return out;
+    }
+    if (const int k = find(kFunctions1, name); k >= 0) {
+      arity(1);
+      return function(Expression::Op::call1, k, args, col);
+    }
+    if (const int k = find(kFunctions2, name); k >= 0) {
+      arity(2);
+      return function(Expression::Op::call2, k, args, col);
+    }
+    if (const int k = find(kFunctions3, name); k >= 0) {
+      arity(3);
+      return function(Expression::Op::call3, k, args, col);
+    }
+    for (const auto& f : user_)
+      if (f.name == name) {
+        arity(1);
+        return function(Expression::Op::user, user_function(f), args, col);
       }
-    for (int k = 0; k < static_cast<int>(std::size(kFunctions2)); ++k)
-      if (name == kFunctions2[k].name) {
-        if (args.size() != 2) throw ExpressionError(name + "() takes 2 arguments", col);
-        const int n = add(Expression::Op::call2, args[0], args[1], col);
-        e_.nodes_[n].function = k;
-        return n;
-      }
-    std::vector<std::string> known;
-    for (const auto& f : kFunctions1) known.emplace_back(f.name);
-    for (const auto& f : kFunctions2) known.emplace_back(f.name);
+    std::vector<std::string> known = Expression::function_names();
+    for (const auto& f : user_) known.push_back(f.name);
     throw ExpressionError("unknown function '" + name + "'" + did_you_mean(name, known), col);
+  }
+  template <class Functions>
+  static int find(const Functions& table, const std::string& name) {
+    for (int k = 0; k < static_cast<int>(std::size(table)); ++k)
+      if (name == table[k].name) return k;
+    return -1;
+  }
+  int function(Expression::Op op, int k, const std::vector<int>& args, int col) {
+    const int n = add(op, args[0], args.size() > 1 ? args[1] : -1, col);
+    e_.nodes_[n].c = args.size() > 2 ? args[2] : -1;
+    e_.nodes_[n].function = k;
+    return n;
+  }
+  // index of `f` in the expression's own copies of the caller's functions
+  int user_function(const NamedFunction& f) {
+    auto& own = e_.functions_;
+    for (size_t k = 0; k < own.size(); ++k)
+      if (own[k].name == f.name) return static_cast<int>(k);
+    own.push_back(f);
+    return static_cast<int>(own.size()) - 1;
   }
   int number() {
     const size_t start = pos_;
@@ -217,15 +347,30 @@ class ExpressionParser {
 
   Expression& e_;
   std::string_view s_;
+  std::span<const NamedFunction> user_;
   size_t pos_ = 0;
 };
 
-Expression Expression::parse(std::string_view text) {
+Expression Expression::parse(std::string_view text, std::span<const NamedFunction> functions) {
   Expression e;
   e.text_ = std::string(text);
-  ExpressionParser p(e, e.text_);
+  ExpressionParser p(e, e.text_, functions);
   p.run();
   return e;
+}
+
+std::vector<std::string> Expression::function_names() {
+  std::vector<std::string> out;
+  for (const auto& f : kFunctions1) out.emplace_back(f.name);
+  for (const auto& f : kFunctions2) out.emplace_back(f.name);
+  for (const auto& f : kFunctions3) out.emplace_back(f.name);
+  for (const char* f : kSpecialForms) out.emplace_back(f);
+  return out;
+}
+
+bool Expression::is_function(std::string_view name) {
+  const auto names = function_names();
+  return std::find(names.begin(), names.end(), name) != names.end();
 }
 
 std::vector<std::string> Expression::names() const {
@@ -299,10 +444,21 @@ Jet Expression::eval(int i, std::span<const Jet> x, Jet t) const {
       if (b.d == 0 && b.dd == 0) return pow(a, b.v);
       return pow(a, b);
     }
+    case Op::compare:
+      return compare(n.function, eval(n.a, x, t).v, eval(n.b, x, t).v);
+    case Op::select: {
+      const double c = eval(n.a, x, t).v;
+      if (std::isnan(c)) return Jet(c);
+      return eval(c != 0 ? n.b : n.c, x, t);
+    }
     case Op::call1:
       return kFunctions1[n.function].f(eval(n.a, x, t));
     case Op::call2:
       return kFunctions2[n.function].f(eval(n.a, x, t), eval(n.b, x, t));
+    case Op::call3:
+      return kFunctions3[n.function].f(eval(n.a, x, t), eval(n.b, x, t), eval(n.c, x, t));
+    case Op::user:
+      return functions_[static_cast<size_t>(n.function)].f(eval(n.a, x, t));
   }
   return {};
 }

@@ -1,11 +1,12 @@
-// A scene document -> Scene: parameters (dependency order), the root system, motion, initial
-// state, efforts and run settings.
+// A scene document -> Scene: parameters (dependency order), tables, the root system, motion,
+// initial state, efforts and run settings.
 #include <yaml-cpp/depthguard.h>
 #include <yaml-cpp/yaml.h>
 
 #include <algorithm>
 #include <cctype>
 #include <cmath>
+#include <filesystem>
 #include <fstream>
 #include <functional>
 #include <map>
@@ -13,6 +14,7 @@
 
 #include "load_system.hpp"
 #include "mo2d/scene.hpp"
+#include "mo2d/table.hpp"
 #include "model/suggest.hpp"
 #include "reader.hpp"
 
@@ -29,10 +31,7 @@ bool is_identifier(const std::string& s) {
 }
 
 bool is_reserved(const std::string& s) {
-  static const char* reserved[] = {"t",   "pi",   "sin", "cos", "tan", "exp",
-                                   "log", "sqrt", "abs", "min", "max", "atan2"};
-  return std::any_of(std::begin(reserved), std::end(reserved),
-                     [&](const char* r) { return s == r; });
+  return s == "t" || s == "pi" || Expression::is_function(s);
 }
 
 // One parameter definition: its text and where it came from (a YAML node or --set). Its move
@@ -46,7 +45,26 @@ struct Definition {  // NOLINT(bugprone-exception-escape)
   int state = 0;  // 0 new, 1 being evaluated, 2 done
 };
 
-void read_parameters(Reader& r, const YAML::Node& node,
+// The tables' names as functions that refuse to be called: parameters are evaluated before the
+// tables are read (a table's scale may use them), so a parameter that calls one is an error at its
+// line rather than an unknown function.
+std::vector<NamedFunction> table_stubs(const YAML::Node& tables) {
+  std::vector<NamedFunction> out;
+  if (!tables.IsDefined() || !tables.IsMap()) return out;
+  for (auto it = tables.begin(); it != tables.end(); ++it) {
+    if (!it->first.IsScalar()) continue;
+    const std::string name = it->first.Scalar();
+    out.push_back({name, [name](Jet) -> Jet {
+                     throw Error("table '" + name +
+                                 "' is used in a parameter: parameters are constants evaluated "
+                                 "before the tables are read; call the table where the value is "
+                                 "used");
+                   }});
+  }
+  return out;
+}
+
+void read_parameters(Reader& r, const YAML::Node& node, const YAML::Node& tables,
                      std::span<const ParameterOverride> overrides, Scene& scene) {
   std::map<std::string, Definition> defs;
   std::vector<std::string> order;
@@ -79,9 +97,10 @@ void read_parameters(Reader& r, const YAML::Node& node,
       r.fail_expression(d.node, ExpressionError(what, column), "parameter '" + name + "'");
     r.fail(d.node, "parameter '" + name + "': " + what);
   };
+  const std::vector<NamedFunction> stubs = table_stubs(tables);
   for (auto& [name, d] : defs) {
     try {
-      d.expr = Expression::parse(d.text);
+      d.expr = Expression::parse(d.text, stubs);
     } catch (const ExpressionError& e) {
       fail(d, name, e.what(), e.column());
     }
@@ -110,7 +129,12 @@ void read_parameters(Reader& r, const YAML::Node& node,
     } catch (const ExpressionError& e) {
       fail(d, name, e.what(), e.column());
     }
-    const double v = d.expr.evaluate().v;
+    double v = 0;
+    try {
+      v = d.expr.evaluate().v;
+    } catch (const Error& e) {  // a table called (table_stubs)
+      fail(d, name, e.what(), 0);
+    }
     if (!std::isfinite(v)) fail(d, name, "the value is not a finite number", 0);
     r.parameters[name] = v;
     scene.parameters.emplace_back(name, v);
@@ -204,6 +228,51 @@ E choice(const Reader& r, const YAML::Node& node, const std::string& what,
   for (const auto& n : names) list += (list.empty() ? "" : ", ") + n;
   r.fail(node, what + ": unknown value '" + s + "'" + did_you_mean(s, names) +
                    "; expected one of: " + list);
+}
+
+// tables: {name: {file, x, y, interpolation, extrapolate, scale_x, scale_y}}, each a function of
+// one argument in the expressions read after it (every expression but the parameters').
+void read_tables(Reader& r, const YAML::Node& node) {
+  const std::filesystem::path dir = std::filesystem::path(r.file).parent_path();
+  for (const auto& [key, value] : r.entries(node, "tables")) {
+    const std::string name = key.Scalar();
+    const std::string what = "table '" + name + "'";
+    if (!is_identifier(name) || is_reserved(name))
+      r.fail(key, what +
+                      ": a table name is a letter or '_' followed by letters, digits or '_', and "
+                      "not t, pi or a function name");
+    if (r.parameters.count(name)) r.fail(key, what + ": a parameter has the same name");
+    r.check_keys(value, {"file", "x", "y", "interpolation", "extrapolate", "scale_x", "scale_y"},
+                 what);
+    const YAML::Node file = r.required(value, "file", what);
+    std::filesystem::path path = r.string(file, what + ".file");
+    if (path.is_relative()) path = dir / path;
+    CsvColumns columns;
+    if (value["x"].IsDefined()) columns.x = r.string(value["x"], what + ".x");
+    if (value["y"].IsDefined()) columns.y = r.string(value["y"], what + ".y");
+    columns.scale_x = r.number_or(value, "scale_x", 1.0, what);
+    if (!(columns.scale_x > 0))
+      r.fail(value["scale_x"], what + ".scale_x: must be > 0 (x must keep increasing)");
+    columns.scale_y = r.number_or(value, "scale_y", 1.0, what);
+    TableOptions options;
+    if (value["interpolation"].IsDefined())
+      options.interpolation = choice<Interpolation>(
+          r, value["interpolation"], what + ".interpolation",
+          {{"cubic", Interpolation::cubic}, {"linear", Interpolation::linear}});
+    if (value["extrapolate"].IsDefined())
+      options.extrapolation = choice<Extrapolation>(r, value["extrapolate"], what + ".extrapolate",
+                                                    {{"error", Extrapolation::error},
+                                                     {"clamp", Extrapolation::clamp},
+                                                     {"periodic", Extrapolation::periodic}});
+    std::shared_ptr<const LookupTable> table;
+    try {
+      table = std::make_shared<const LookupTable>(
+          read_table_csv(path.string(), name, columns, options));
+    } catch (const Error& e) {  // "cam.csv:7: table 'cam': x must increase ..."
+      r.fail(file, e.what());
+    }
+    r.functions.push_back({name, [table](Jet x) { return (*table)(x); }});
+  }
 }
 
 void read_run(const Reader& r, const YAML::Node& node, RunSettings& run,
@@ -306,11 +375,12 @@ Scene parse_scene(std::string_view yaml, const std::string& file_name,
                            type_name(doc));
     r.check_keys(
         doc,
-        {"name", "parameters", "ground", "bodies", "joints", "coordinates", "constraints", "loads",
-         "subsystems", "instances", "motion", "initial", "efforts", "controllers", "run"},
+        {"name", "parameters", "tables", "ground", "bodies", "joints", "coordinates", "constraints",
+         "loads", "subsystems", "instances", "motion", "initial", "efforts", "controllers", "run"},
         "scene");
     scene.name = doc["name"].IsDefined() ? r.string(doc["name"], "name") : "scene";
-    read_parameters(r, doc["parameters"], overrides, scene);
+    read_parameters(r, doc["parameters"], doc["tables"], overrides, scene);
+    read_tables(r, doc["tables"]);
     scene.system = System(scene.name);
     Subsystems library;
     if (doc["subsystems"].IsDefined()) {

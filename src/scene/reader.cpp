@@ -114,7 +114,7 @@ Expression Reader::expression(const YAML::Node& node, const std::string& what) c
   if (!node.IsScalar())
     fail(node, what + ": expected a number or an expression, got " + type_name(node));
   try {
-    return Expression::parse(node.Scalar());
+    return Expression::parse(node.Scalar(), functions);
   } catch (const ExpressionError& e) {
     fail_expression(node, e, what);
   }

@@ -23,6 +23,9 @@ struct Reader {
   std::string_view source{};                             // the YAML text (it outlives the reader)
   std::unordered_map<std::string, double> parameters{};  // evaluated
   std::vector<std::string> parameter_names{};
+  // The scene's tables as functions of one argument, callable in every expression read after
+  // them (Reader::expression passes them to Expression::parse).
+  std::vector<NamedFunction> functions{};
 
   Location at(const YAML::Node& node) const;
   [[noreturn]] void fail(const YAML::Node& node, const std::string& message) const;
@@ -47,7 +50,8 @@ struct Reader {
   // An expression of t (and the parameters), shared by the closures that evaluate it.
   std::shared_ptr<const Expression> time_function(const YAML::Node& node,
                                                   const std::string& what) const;
-  // Parse a scalar as an expression; errors point at the offending column of the file.
+  // Parse a scalar as an expression (the built-in functions and `functions`); errors point at the
+  // offending column of the file.
   Expression expression(const YAML::Node& node, const std::string& what) const;
   // The file position of column `column` (1-based) of the expression text of `node`; of the
   // indicator for a block scalar (| or >, whose text is not the file's).
