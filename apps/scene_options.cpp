@@ -67,7 +67,9 @@ Scene load_scene_with_overrides(const SceneOptions& o) {
 Model build_model_of(const Scene& s) {
   BuildOptions b;
   b.max_memory = s.run.max_memory;
-  return build_scene_model(s, b);
+  Model m = build_scene_model(s, b);
+  for (const auto& w : m.sketch.warnings) std::fprintf(stderr, "mo2d: warning: %s\n", w.c_str());
+  return m;
 }
 
 std::string output_path(const SceneOptions& o, const Scene& s, const std::string& suffix) {

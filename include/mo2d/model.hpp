@@ -266,6 +266,27 @@ struct TreeNode {
   std::vector<int> rows;  // velocity rows owned here
 };
 
+// Bodies given by their shape (BodyDef::shape): where each of their nodes was sketched and where
+// the initial configuration (Model::q0) has it. Empty when no body has a shape.
+struct SketchedNode {
+  std::string label;     // full node label, "coupler.B"
+  Vec2 sketch{0, 0};     // the sketched position (world)
+  Vec2 assembled{0, 0};  // its position in the initial configuration (world)
+  double moved = 0;      // |assembled - sketch| (m)
+};
+struct SketchReport {
+  std::vector<SketchedNode> nodes;  // every node of every body with a shape, in body order
+  // The configuration nearest to the sketch was found (the distance to it cannot decrease);
+  // false: Gauss-Newton stopped short of it (a warning says by how much).
+  bool nearest = true;
+  // A warning per node moved by more than kSketchWarnFraction of the mechanism's size (the sketch
+  // is far from the configuration, which may be on another branch than the one intended), and
+  // the one of `nearest` false.
+  std::vector<std::string> warnings;
+  static constexpr double kSketchWarnFraction = 0.1;
+  double max_moved() const;  // largest SketchedNode::moved (0 without nodes)
+};
+
 struct Model {
   std::string name;
   int n0 = 0, n1 = 0;  // coordinates, quasi-velocities
@@ -304,6 +325,7 @@ struct Model {
 
   std::vector<TreeNode> tree;  // tree[0] is the root
   Eigen::VectorXd q0;          // initial configuration (assembled)
+  SketchReport sketch;         // bodies given by their shape: how far assembly moved their nodes
 
   std::vector<std::string> input_labels() const;     // Model::inputs[k].label
   std::vector<std::string> reaction_labels() const;  // Model::reactions[k].label
@@ -346,7 +368,8 @@ inline double omega_value(const OmegaRef& w, const Eigen::Ref<const Eigen::Vecto
 Vec2 com_position(const Body& b, const Eigen::Ref<const Eigen::VectorXd>& q0);
 double body_angle(const Body& b, const Eigen::Ref<const Eigen::VectorXd>& q0);
 
-// Human-readable summary: variables, constraints, inputs, DOF.
+// Human-readable summary: variables, constraints, inputs, DOF (and, for bodies given by their
+// shape, how far each sketched node moved).
 std::string describe(const Model& model);
 
 }  // namespace mo2d

@@ -33,9 +33,12 @@ using Vec2 = Eigen::Vector2d;
 
 struct NodeDef {
   std::string name{};
-  // Coordinates in the initial configuration, in the System's own frame. They define the body's
-  // shape exactly; the copies of a joint node in the bodies it joins must coincide (and a slider
-  // lie on its axis line) to BuildOptions::joint_tolerance, or build_model refuses the joint.
+  // Coordinates in the initial configuration, in the System's own frame. For a body without a
+  // shape (BodyDef::shape empty) and for a ground node they are exact: they define the body's
+  // shape and its placement, and the copies of a joint node in two such bodies must coincide (and
+  // a slider lie on its axis line) to BuildOptions::joint_tolerance, or build_model refuses the
+  // joint. For a body given by its shape they are a sketch: approximate, moved by build_model to
+  // where the joints close (see BodyDef::shape).
   Vec2 position{0, 0};
 };
 
@@ -72,9 +75,23 @@ struct CenterOfMass {
 
 struct BodyDef {
   std::string name{};
-  std::vector<NodeDef> nodes{};  // one node: a point mass (with a rotation only if inertia > 0)
-  double mass = 0;               // kg, >= 0
-  double inertia = 0;            // kg m^2 about the centre of mass, >= 0
+  // The body's nodes, with their positions in the System's frame: exact without a shape, a sketch
+  // with one. One node: a point mass (with a rotation only if inertia > 0).
+  std::vector<NodeDef> nodes{};
+  // Geometry given by shape (optional): the coordinates of every node in the body's own frame,
+  // one per node in the order of `nodes`; exact. A bar of length L: {{0, 0}, {L, 0}}; a point
+  // mass: {{0, 0}}. Empty: the node positions are exact (they are the shape and the placement).
+  // With a shape, the node positions are a sketch of where the body is: build_model places the
+  // body rigidly (its shape unchanged) at the configuration where every joint closes that moves
+  // the sketched nodes least (the sum of their squared displacements), holding the ground and
+  // every body without a shape where they are written; the sketch therefore chooses the
+  // assembly branch (elbow up or down). Model::sketch reports how far each node moved (and warns
+  // above 10 % of the mechanism's size); lengths that cannot close a loop are refused naming the
+  // joint left open, its gap and the loop. Points given on a body with a shape (a centre of mass
+  // `point`, a force's `point`, a spring's `point_a`/`point_b`) are in this body frame too.
+  std::vector<Vec2> shape{};
+  double mass = 0;                    // kg, >= 0
+  double inertia = 0;                 // kg m^2 about the centre of mass, >= 0
   std::optional<CenterOfMass> com{};  // default: the first node
 };
 

@@ -45,8 +45,9 @@ void assemble_model(Model& m, const Eigen::VectorXd& q0, const BuildOptions& opt
 
 Model build_model(const System& system, const BuildOptions& options) {
   using namespace build;
-  // 1. flatten the tree of subsystems
-  const Flat flat = flatten(system);
+  // 1. flatten the tree of subsystems; 1b. place the bodies given by their shape
+  Flat flat = flatten(system);
+  SketchReport sketch = resolve_sketches(flat, options);
   Model m;
   m.name = system.name();
   m.reduction = options.reduction;
@@ -76,6 +77,8 @@ Model build_model(const System& system, const BuildOptions& options) {
   // 8. assemble
   check_input_labels(m);
   assemble_model(m, numbering.q0, options);
+  m.sketch = std::move(sketch);
+  complete_sketch_report(m);
   return m;
 }
 

@@ -6,6 +6,10 @@
 //
 //   1. flatten   (flatten.cpp)     System tree -> Flat: every definition with its subsystem and
 //                                  instance prefix, positions in world coordinates.
+//   1b. sketch   (sketch.cpp,      bodies given by their shape (BodyDef::shape) placed where the
+//        sketch_solve.cpp)         joints close, nearest to their sketch; Flat then holds exact
+//                                  positions as if the user had written them (only when some
+//                                  body has a shape).
 //   2. validate  (validate.cpp)    node elements and the mechanism's size, bodies with their
 //                                  constant mass data, one namespace for joints, coordinates and
 //                                  constraints, the topology of revolute joints; the per-joint
@@ -58,9 +62,13 @@ struct Owned {
 // and its node references are resolved from its prefix.
 struct Flat {
   std::vector<TreeNode> tree;             // subsystem tree; tree[0] is the root (vars, rows empty)
+  std::vector<Placement> frames;          // same size: each subsystem's frame in the world
   std::vector<std::string> ground_names;  // full labels "left.ground.O"
   std::vector<Vec2> ground_pos;           // same size: world positions
-  std::vector<Owned<BodyDef>> bodies;     // name prefixed, node and centre positions in world
+  // name prefixed, node and centre positions in world (a body given by its shape: its nodes'
+  // sketch in world, its shape and centre-of-mass point in its own frame, until resolve_sketches
+  // places it)
+  std::vector<Owned<BodyDef>> bodies;
   std::vector<Owned<RevoluteDef>> revolutes;
   std::vector<Owned<PrismaticDef>> prismatics;
   std::vector<Owned<PinInSlotDef>> slots;
@@ -76,6 +84,16 @@ struct Flat {
 };
 
 Flat flatten(const System& system);
+
+// ---- 1b. sketch ---------------------------------------------------------------------------------
+
+// Places every body of `flat` that has a shape: its node positions (the sketch) become the placed
+// shape, and the points given in its frame (centre-of-mass point, force points, spring points)
+// world points of that placement. Returns the sketch of every such node (SketchReport::nodes with
+// `sketch` set) and SketchReport::nearest; complete_sketch_report fills in the rest once the model
+// is assembled. Throws Error naming the joint left open when the shapes cannot close a loop.
+SketchReport resolve_sketches(Flat& flat, const BuildOptions& options);
+void complete_sketch_report(Model& m);
 
 // ---- 2. validate --------------------------------------------------------------------------------
 

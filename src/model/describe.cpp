@@ -19,6 +19,15 @@ std::string describe(const Model& m) {
   s << "\nreactions:";
   for (const auto& r : m.reactions) s << " " << r.label;
   s << "\n";
+  if (!m.sketch.nodes.empty()) {
+    s << "sketch: bodies given by their shape, placed where their joints close nearest to their "
+         "sketch (largest move "
+      << m.sketch.max_moved() << " m):\n";
+    for (const auto& n : m.sketch.nodes)
+      s << "  " << n.label << " sketched (" << n.sketch.x() << ", " << n.sketch.y() << ") -> ("
+        << n.assembled.x() << ", " << n.assembled.y() << "), moved " << n.moved << " m\n";
+    for (const auto& w : m.sketch.warnings) s << "warning: " << w << "\n";
+  }
   return s.str();
 }
 

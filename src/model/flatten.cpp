@@ -35,7 +35,9 @@ void flatten_bodies(const System& s, const std::string& prefix, const Frame& fra
       check_name(n.name, "node of body '" + prefix + b.name + "'");
       n.position = frame.apply(n.position);
     }
-    if (w.com && w.com->kind == CenterOfMass::Kind::point) w.com->point = frame.apply(w.com->point);
+    // a body given by its shape keeps its centre-of-mass point in its own frame (sketch.cpp)
+    if (w.com && w.com->kind == CenterOfMass::Kind::point && w.shape.empty())
+      w.com->point = frame.apply(w.com->point);
     w.name = prefix + b.name;
     out.bodies.push_back({std::move(w), tree_index, prefix});
   }
@@ -110,7 +112,9 @@ void flatten(const System& s, const std::string& prefix, const Frame& frame, int
     const int child = static_cast<int>(out.tree.size());
     out.tree.push_back({prefix + inst.name, tree_index, {}, {}, {}});
     out.tree[tree_index].children.push_back(child);
-    flatten(*inst.system, prefix + inst.name + ".", frame.compose(inst.placement), child, out);
+    const Frame child_frame = frame.compose(inst.placement);
+    out.frames.push_back({child_frame.offset, child_frame.angle});
+    flatten(*inst.system, prefix + inst.name + ".", child_frame, child, out);
   }
 }
 
@@ -119,6 +123,7 @@ void flatten(const System& s, const std::string& prefix, const Frame& frame, int
 Flat flatten(const System& system) {
   Flat flat;
   flat.tree.push_back({"", -1, {}, {}, {}});
+  flat.frames.push_back({});
   flatten(system, "", Frame{}, 0, flat);
   return flat;
 }

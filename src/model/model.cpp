@@ -55,6 +55,12 @@ void Constraint::wrong_kind(ConstraintKind wanted) const {
               name);
 }
 
+double SketchReport::max_moved() const {
+  double m = 0;
+  for (const auto& n : nodes) m = std::max(m, n.moved);
+  return m;
+}
+
 std::vector<std::string> Model::input_labels() const {
   std::vector<std::string> out;
   for (const auto& in : inputs) out.push_back(in.label);

@@ -86,21 +86,86 @@ CenterOfMass read_com(const Reader& r, const YAML::Node& node, const BodyDef& b,
       r.number_or(node, "gamma", 0.5, what), r.number_or(node, "rho", 0.0, what));
 }
 
+// `nodes`: the node positions (exact, or the sketch of a body given by its shape).
+void read_nodes(const Reader& r, const YAML::Node& value, BodyDef& b, const std::string& what) {
+  const YAML::Node nodes = r.required(value, "nodes", what);
+  const Entries entries = r.entries(nodes, what + ".nodes");
+  if (entries.empty()) r.fail(nodes, what + ".nodes: a body needs at least one node");
+  for (const auto& [nk, nv] : entries) {
+    check_plain_name(r, nk, "node");
+    b.nodes.push_back({nk.Scalar(), r.vec2(nv, what + ".nodes." + nk.Scalar())});
+  }
+}
+
+// `shape` (node coordinates in the body's frame) with its sketch: `nodes` (the same nodes in the
+// same order, at approximate positions) or `at` (an approximate placement of the shape).
+void read_shape(const Reader& r, const YAML::Node& value, BodyDef& b, const std::string& what) {
+  const YAML::Node shape = value["shape"];
+  std::vector<std::string> names;
+  for (const auto& [nk, nv] : r.entries(shape, what + ".shape")) {
+    check_plain_name(r, nk, "node");
+    names.push_back(nk.Scalar());
+    b.shape.push_back(r.vec2(nv, what + ".shape." + nk.Scalar()));
+  }
+  if (names.empty()) r.fail(shape, what + ".shape: a body needs at least one node");
+  const YAML::Node at = value["at"];
+  if (!at.IsDefined()) {
+    read_nodes(r, value, b, what);
+    std::string order;
+    for (const auto& n : names) order += (order.empty() ? "" : ", ") + n;
+    const Entries entries = r.entries(value["nodes"], what + ".nodes");
+    for (size_t k = 0; k < std::max(names.size(), entries.size()); ++k)
+      if (k >= names.size() || k >= entries.size() || entries[k].first.Scalar() != names[k])
+        r.fail(k < entries.size() ? entries[k].first : value["nodes"],
+               what +
+                   ".nodes: the sketch of a body given by its shape lists the shape's nodes in "
+                   "the same order (" +
+                   order + ")");
+    return;
+  }
+  if (value["nodes"].IsDefined())
+    r.fail(at, what + ".at: give the sketch either as 'nodes' or as 'at', not both");
+  r.check_keys(at, {"origin", "angle"}, what + ".at");
+  const Placement placement{r.vec2(r.required(at, "origin", what + ".at"), what + ".at.origin"),
+                            r.number_or(at, "angle", 0.0, what + ".at")};
+  for (size_t k = 0; k < names.size(); ++k)
+    b.nodes.push_back({names[k], placement.apply(b.shape[k])});
+}
+
+// The geometry of a body: exact `nodes`, or `shape` / `length` with a sketch.
+void read_geometry(const Reader& r, const YAML::Node& value, BodyDef& b, const std::string& what) {
+  const YAML::Node length = value["length"];
+  if (value["shape"].IsDefined()) {
+    if (length.IsDefined()) r.fail(length, what + ": give either 'shape' or 'length', not both");
+    read_shape(r, value, b, what);
+    return;
+  }
+  if (value["at"].IsDefined())
+    r.fail(value["at"],
+           what + ".at: places a body given by its 'shape'" +
+               std::string(length.IsDefined() ? " (a bar given by 'length' is sketched by its two "
+                                                "'nodes')"
+                                              : ""));
+  read_nodes(r, value, b, what);
+  if (!length.IsDefined()) return;
+  if (b.nodes.size() != 2)
+    r.fail(length, what +
+                       ".length: a bar given by its length has exactly two nodes (the first at "
+                       "(0, 0), the second at (length, 0) in its frame)");
+  const double l = r.number(length, what + ".length");
+  if (!(l > 0)) r.fail(length, what + ".length: a length must be > 0 m");
+  b.shape = {{0, 0}, {l, 0}};
+}
+
 void read_bodies(Context& c, const YAML::Node& node) {
   const Reader& r = c.r;
   for (const auto& [key, value] : r.entries(node, "bodies")) {
     check_plain_name(r, key, "body");
     const std::string what = "body '" + key.Scalar() + "'";
-    r.check_keys(value, {"nodes", "mass", "inertia", "com"}, what);
+    r.check_keys(value, {"nodes", "shape", "length", "at", "mass", "inertia", "com"}, what);
     BodyDef b;
     b.name = key.Scalar();
-    const YAML::Node nodes = r.required(value, "nodes", what);
-    const Entries entries = r.entries(nodes, what + ".nodes");
-    if (entries.empty()) r.fail(nodes, what + ".nodes: a body needs at least one node");
-    for (const auto& [nk, nv] : entries) {
-      check_plain_name(r, nk, "node");
-      b.nodes.push_back({nk.Scalar(), r.vec2(nv, what + ".nodes." + nk.Scalar())});
-    }
+    read_geometry(r, value, b, what);
     const YAML::Node mass = r.required(value, "mass", what);
     b.mass = r.number(mass, what + ".mass");
     if (b.mass < 0) r.fail(mass, what + ".mass: a mass must be >= 0 kg");
