@@ -217,7 +217,7 @@ std::string loop_through(const Flat& flat, const std::vector<JointInfo>& joints,
 }
 
 // Writes the placed positions back into Flat: nodes, the centre-of-mass point, and the points of
-// forces and springs on the body, which its frame gives.
+// forces, named points and springs on the body, which its frame gives.
 void place(Flat& flat, const Setup& s, const sketch::Result& r, SketchReport& report) {
   for (size_t f = 0; f < s.body_of_free.size(); ++f) {
     BodyDef& d = flat.bodies[s.body_of_free[f]].def;
@@ -236,6 +236,9 @@ void place(Flat& flat, const Setup& s, const sketch::Result& r, SketchReport& re
   for (auto& force : flat.forces)
     if (const sketch::Pose* p = pose_of(force.prefix, force.def.body))
       force.def.point = p->apply(unplace(flat.frames[force.owner], force.def.point));
+  for (auto& point : flat.points)
+    if (const sketch::Pose* p = pose_of(point.prefix, point.def.body))
+      point.def.point = p->apply(unplace(flat.frames[point.owner], point.def.point));
   for (auto& spring : flat.springs) {
     if (const sketch::Pose* p = pose_of(spring.prefix, spring.def.body_a))
       spring.def.point_a = p->apply(unplace(flat.frames[spring.owner], spring.def.point_a));
