@@ -27,7 +27,8 @@ std::pair<double, double> distance(const Model& m, const Quantity& q,
   const detail::PointState b = detail::point_state(m, q.b, q0, q1);
   const Vec2 d = b.p - a.p;
   const double l = d.norm();
-  return {l, l > 0 ? d.dot(b.v - a.v) / l : 0.0};
+  const Vec2 e = l > 0 ? Vec2(d / l) : Vec2(0, 0);  // as a spring's state (the same round-off)
+  return {l, e.dot(b.v - a.v)};
 }
 
 }  // namespace
