@@ -18,7 +18,7 @@ namespace {
 using K = Quantity::Kind;
 
 // Insert a derived quantity; a label two elements define is kept as ambiguous (an error if used).
-void put(Model& m, const std::string& label, Quantity q) {
+void put(Model& m, const std::string& label, const Quantity& q) {
   auto [it, inserted] = m.quantities.emplace(label, q);
   if (!inserted) it->second.var = -2;  // ambiguous: see compile_law
 }
@@ -111,6 +111,8 @@ std::vector<std::string> law_candidates(
     const Model& m, const std::string& prefix,
     const std::vector<std::pair<std::string, Quantity>>& locals) {
   std::vector<std::string> c;
+  c.reserve(locals.size() + m.coordinate_labels.size() + m.rate_labels.size() +
+            m.quantities.size());
   for (const auto& [name, q] : locals) c.push_back(name);
   for (const auto* labels : {&m.coordinate_labels, &m.rate_labels})
     for (const auto& l : *labels)
