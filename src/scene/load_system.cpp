@@ -329,14 +329,8 @@ Law state_law(const Reader& r, const YAML::Node& node, const std::string& what,
     r.fail_expression(node, err, what);
   }
   if (uses)  // where each argument is written: an unknown one is reported at its column
-    for (const auto& a : args) {
-      Location l = r.at(node);
-      const std::string& text = node.Scalar();
-      const size_t at = text.find(a);
-      if (l.line > 0 && at != std::string::npos && text.find('\n') == std::string::npos)
-        l.column += (node.Tag() == "!" ? 1 : 0) + static_cast<int>(at);
-      uses->emplace_back(element + "/" + a, l);
-    }
+    for (const auto& a : args)
+      uses->emplace_back(element + "/" + a, r.at_column(node, e->column(a)));
   if (args.empty()) {  // a function of time only
     return Law([e](double t) { return e->evaluate({}, Jet(t)).v; });
   }
