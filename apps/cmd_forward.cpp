@@ -25,6 +25,7 @@ int forward(const SceneOptions& o) {
   progress.finish();
   std::printf("mo2d forward dynamics: %s\n", model.name.c_str());
   print_forward_table(model, r, run);
+  print_tracking_table(tracking_errors(scene, model, r));
   // all outputs land together or not at all (mo2d/output.hpp)
   OutputSet out;
   if (scene.run.csv) out.add(output_path(o, scene, "forward.csv"), trajectory_csv(r));

@@ -61,6 +61,15 @@ std::string forward_summary(const Scene& s, const Model& m, const Trajectory& r)
   j["max_residuals"] = {{"position", any ? r.residuals.col(0).maxCoeff() : 0.0},
                         {"velocity", any ? r.residuals.col(1).maxCoeff() : 0.0}};
   j["energy_error"] = energy_error(r);
+  if (!s.controllers.empty()) {  // the tracking error e = x - r of each controller
+    json tracking = json::object();
+    for (const TrackingError& e : tracking_errors(s, m, r))
+      tracking[e.input] = {{"coordinate", e.coordinate},
+                           {"max_error", e.max_error},
+                           {"t_max", e.t_max},
+                           {"final_error", e.final_error}};
+    j["tracking"] = tracking;
+  }
   j["integrator"] = {{"steps", r.stats.steps},
                      {"rhs_evaluations", r.stats.rhs_evaluations},
                      {"projections", r.stats.projections},

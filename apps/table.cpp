@@ -1,6 +1,7 @@
 // Short result tables on stdout.
 #include "table.hpp"
 
+#include <cmath>
 #include <cstdio>
 
 namespace mo2d::cli {
@@ -24,6 +25,15 @@ void print_inverse_table(const Model& model, const Trajectory& r, const InverseO
   for (const auto& w : r.stats.warnings) std::printf("  warning: %s\n", w.c_str());
   std::printf("  CPU time %.3f ms (%.2f us per sample)\n", 1e3 * r.stats.cpu_seconds,
               1e6 * r.stats.cpu_seconds / static_cast<double>(r.time.size()));
+}
+
+void print_tracking_table(const std::vector<TrackingError>& tracking) {
+  if (tracking.empty()) return;
+  std::printf("  %-24s %-16s %14s %10s %14s\n", "controller (input)", "coordinate", "max |x - r|",
+              "at t [s]", "final x - r");
+  for (const TrackingError& e : tracking)
+    std::printf("  %-24s %-16s %14.6e %10.4f %14.6e\n", e.input.c_str(), e.coordinate.c_str(),
+                std::abs(e.max_error), e.t_max, e.final_error);
 }
 
 double energy_error(const Trajectory& r) {

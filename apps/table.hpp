@@ -1,6 +1,9 @@
 #pragma once
 // The short tables the subcommands print after a run.
+#include <vector>
+
 #include "mo2d/mo2d.hpp"
+#include "mo2d/scene.hpp"
 
 namespace mo2d::cli {
 
@@ -8,6 +11,9 @@ namespace mo2d::cli {
 void print_inverse_table(const Model& model, const Trajectory& r, const InverseOptions& run);
 // Sizes, integrator statistics, residuals and energy balance of a forward run.
 void print_forward_table(const Model& model, const Trajectory& r, const ForwardOptions& run);
+
+// The tracking error of each controller (input, coordinate, max |x - r| with its time, final).
+void print_tracking_table(const std::vector<TrackingError>& tracking);
 
 // max |E(t) - E(t0) - W_inputs(t) + D(t)| with E = kinetic + potential (J).
 double energy_error(const Trajectory& r);

@@ -127,12 +127,14 @@ ForwardOptions forward_options(const Scene& scene, const Model& model);
 // a setting left at its default or overridden on the command line).
 void check_scene_options(const Scene& scene, const Model& model, const InverseOptions& options);
 void check_scene_options(const Scene& scene, const Model& model, const ForwardOptions& options);
-// Tracking error of each controller over a forward run: max |x - r| and where, and at the end.
+// Tracking error e = x - r of each controller over a forward run of the scene's model: the
+// signed error of largest |e| and its time, and e at the last sample (rad or m).
 struct TrackingError {
   std::string input, coordinate;
   double max_error = 0, t_max = 0, final_error = 0;
 };
-std::vector<TrackingError> tracking_errors(const Scene& scene, const Trajectory& r);
+std::vector<TrackingError> tracking_errors(const Scene& scene, const Model& model,
+                                           const Trajectory& r);
 // Consistent initial state of a forward run (consistent_state with the scene's initial values).
 State initial_state(const Scene& scene, const Model& model);
 

@@ -31,10 +31,13 @@ Law pd_control(PdControl c) {
   std::vector<std::string> args = {c.coordinate,
                                    c.rate.empty() ? rate_label(c.coordinate) : c.rate};
   auto f = [c = std::move(c)](std::span<const Jet> x, Jet t) {
+    // r, r', r'' at t.v exactly; along the caller's direction (t.d, t.dd) r is a Jet by the chain
+    // rule and r' to first order (r''' is not available); u_ff is a plain time function (its
+    // derivative along t is taken as 0)
     const Jet r = c.reference ? c.reference(Jet(t.v, 1, 0)) : Jet();
     const double ff = c.feed_forward ? c.feed_forward(t.v) : 0.0;
-    // r.d is r'(t) exactly; the result's derivatives are along the arguments only
-    return Jet(ff) + c.kp * (Jet(r.v) - x[0]) + c.kd * (Jet(r.d) - x[1]);
+    const Jet r_t = chain(t, r.v, r.d, r.dd), rate_t(r.d, r.dd * t.d, 0);
+    return Jet(ff) + c.kp * (r_t - x[0]) + c.kd * (rate_t - x[1]);
   };
   return Law(std::move(args), std::move(f));
 }

@@ -150,11 +150,13 @@ void add_controllers(const Scene& scene, const Model& model, ForwardOptions& o) 
 
 }  // namespace
 
-std::vector<TrackingError> tracking_errors(const Scene& scene, const Trajectory& r) {
+std::vector<TrackingError> tracking_errors(const Scene& scene, const Model& model,
+                                           const Trajectory& r) {
   std::vector<TrackingError> out;
   for (const SceneController& c : scene.controllers) {
     TrackingError e{c.input, c.control.coordinate};
-    const Eigen::VectorXd x = r.q0.col(r.column(c.control.coordinate));
+    // by the model's index: the coordinate may be an alias (a merged node's label)
+    const Eigen::VectorXd x = r.q0.col(model.coordinate(c.control.coordinate));
     for (Eigen::Index k = 0; k < r.time.size(); ++k) {
       const double err = x[k] - (c.control.reference ? c.control.reference(Jet(r.time[k])).v : 0);
       if (std::abs(err) > std::abs(e.max_error) || k == 0) {
