@@ -5,6 +5,7 @@
 
 #include "dynamics/points.hpp"
 #include "mo2d/error.hpp"
+#include "model/suggest.hpp"
 
 namespace mo2d::detail {
 
@@ -92,8 +93,14 @@ TracePoint trace_point(const Model& m, const std::string& label) {
         if (m.bodies[b].node_names[k] == label) return {label, b, m.bodies[b].nodes[k], false};
     }
   }
-  throw Error("render: no point '" + label +
-                  "' to trace (use \"body.node\", \"body.com\" or a named point)",
+  std::vector<std::string> candidates;
+  for (const NamedPoint& p : m.points) candidates.push_back(p.name);
+  for (const Body& b : m.bodies) {
+    candidates.push_back(b.name + ".com");
+    candidates.insert(candidates.end(), b.node_names.begin(), b.node_names.end());
+  }
+  throw Error("render: no point '" + label + "' to trace" + did_you_mean(label, candidates) +
+                  " (use \"body.node\", \"body.com\" or a named point)",
               label);
 }
 

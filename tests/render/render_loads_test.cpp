@@ -45,7 +45,8 @@ Motion turning(const Model& m, int n) {
   return mo;
 }
 
-// 200 x 200 px at 72 dpi showing [-1, 1]^2: world (x, y) at pixel (100 + 100 x, 100 - 100 y).
+// 200 x 200 px at 72 dpi showing [-1, 1]^2: world (x, y) at (100 + 100 x, 100 - 100 y) in pixel
+// units, inside the pixel of indices (floor(100 + 100 x), floor(100 - 100 y)).
 FrameOptions window() {
   FrameOptions o;
   o.width = o.height = 200;
@@ -57,8 +58,8 @@ FrameOptions window() {
   return o;
 }
 unsigned at_world(const Image& im, double x, double y) {
-  return rgb_of(im.at(static_cast<int>(std::lround(100 + 100 * x)),
-                      static_cast<int>(std::lround(100 - 100 * y))));
+  return rgb_of(im.at(static_cast<int>(std::floor(100 + 100 * x)),
+                      static_cast<int>(std::floor(100 - 100 * y))));
 }
 int count(const Image& im, unsigned c) {
   int n = 0;
@@ -101,11 +102,12 @@ TEST(RenderLoads, ForceArrowFollowsTheForceAndIsSizedByIt) {
   EXPECT_EQ(count(render_frame(m, mo, 0, o), kGreen), 0);  // loads not asked for
   o.show_loads = true;
   const Image peak = render_frame(m, mo, 0, o), half = render_frame(m, mo, 1, o);
-  EXPECT_EQ(at_world(peak, 0.5, -0.10), kGreen);  // the shaft below A
-  EXPECT_EQ(at_world(peak, 0.5, -0.25), kGreen);
+  EXPECT_EQ(at_world(peak, 0.5, -0.05), kGreen);  // the shaft below A (its head from 0.25 m)
+  EXPECT_EQ(at_world(peak, 0.5, -0.20), kGreen);
   EXPECT_NE(at_world(peak, 0.5, 0.15), kGreen);  // nothing above A
-  EXPECT_EQ(at_world(half, 0.5, -0.10), kGreen);
-  EXPECT_NE(at_world(half, 0.5, -0.25), kGreen);  // ends at 0.17 m
+  EXPECT_NE(at_world(peak, 0.5, -0.36), kGreen);  // nor beyond its tip at 0.34 m
+  EXPECT_EQ(at_world(half, 0.5, -0.05), kGreen);
+  EXPECT_NE(at_world(half, 0.5, -0.20), kGreen);  // its tip at 0.17 m
   EXPECT_GT(count(peak, kGreen), count(half, kGreen));
 }
 

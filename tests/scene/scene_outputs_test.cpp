@@ -112,7 +112,7 @@ subsystems:
     points:
       foot: {body: shin, point: [0.1, -1]}
 ground:
-  O: [0, 0]
+  O: [1, 0]
 instances:
   left: {subsystem: leg, offset: [1, 0]}
 joints:
@@ -142,7 +142,8 @@ TEST(SceneOutputs, ErrorsAtTheirLine) {
          "outputs: unknown key 'load' (did you mean 'loads'?)");
   expect(replaced(kScene, "  mark: {body", "  ma.rk: {body"), "bad.yaml:15:3",
          "names may not contain '.'");
-  expect(replaced(kScene, "fx: -3 * mark.vx", "fx: -3 * mark.vz"), "bad.yaml:18:", "mark.vz");
+  expect(replaced(kScene, "fx: -3 * mark.vx", "fx: -3 * mark.vz"), "bad.yaml:18:52", "mark.vz");
 }
 
 }  // namespace
+}  // namespace mo2d
