@@ -104,7 +104,7 @@ TEST(RenderLoads, ForceArrowFollowsTheForceAndIsSizedByIt) {
   const Image peak = render_frame(m, mo, 0, o), half = render_frame(m, mo, 1, o);
   EXPECT_EQ(at_world(peak, 0.5, -0.05), kGreen);  // the shaft below A (its head from 0.25 m)
   EXPECT_EQ(at_world(peak, 0.5, -0.20), kGreen);
-  EXPECT_NE(at_world(peak, 0.5, 0.15), kGreen);  // nothing above A
+  EXPECT_NE(at_world(peak, 0.5, 0.15), kGreen);   // nothing above A
   EXPECT_NE(at_world(peak, 0.5, -0.36), kGreen);  // nor beyond its tip at 0.34 m
   EXPECT_EQ(at_world(half, 0.5, -0.05), kGreen);
   EXPECT_NE(at_world(half, 0.5, -0.20), kGreen);  // its tip at 0.17 m
