@@ -48,7 +48,7 @@ struct FrameStyle {
   Rgb ground = rgb_hex(0x555555);      // hatching and rails of the ground
   Rgb positive = rgb_hex(0xC0392B);    // effort > 0 (counter-clockwise torque, force along +axis)
   Rgb negative = rgb_hex(0x2166AC);    // effort < 0
-  Rgb load = rgb_hex(0x1B7837);        // applied forces and torques (show_loads)
+  Rgb load = rgb_hex(0x5E3C99);        // applied forces and torques (show_loads): dark violet
   std::vector<Rgb> palette = okabe_ito();  // body k gets palette[k % size]
   // Sizes in points (1/72 in); pixels = points * dpi / 72.
   double body_width = 7.0;      // width of the rounded body outlines
