@@ -21,7 +21,8 @@ int forward(const SceneOptions& o) {
   Progress progress("forward dynamics of '" + model.name + "'", run.t0, run.t1);
   run.progress = [&progress](double t) { progress.update(t); };
   run.monitor = [&progress](const RunProgress& p) { progress.report(p); };
-  const Trajectory r = forward_dynamics(model, initial, run);
+  Trajectory r = forward_dynamics(model, initial, run);
+  add_output_columns(model, r, scene.outputs);  // the columns the scene asks for
   progress.finish();
   std::printf("mo2d forward dynamics: %s\n", model.name.c_str());
   print_forward_table(model, r, run);

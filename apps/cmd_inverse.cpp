@@ -24,7 +24,8 @@ int inverse(const SceneOptions& o) {
   check_scene_options(scene, model, run);
   Progress progress("inverse dynamics of '" + model.name + "'", run.t0, run.t1, "samples");
   run.monitor = [&progress](const RunProgress& p) { progress.report(p); };
-  const Trajectory r = inverse_dynamics(model, scene.motion, run);
+  Trajectory r = inverse_dynamics(model, scene.motion, run);
+  add_output_columns(model, r, scene.outputs);  // the columns the scene asks for
   progress.finish();
   std::printf("mo2d inverse dynamics: %s\n", model.name.c_str());
   print_inverse_table(model, r, run);

@@ -1,7 +1,8 @@
 // mo2d render SCENE [--set name=value]... [--out DIR] [--solve inverse|forward] [--frames]
-// [--every K] [--format png|svg|pdf] [--video]: solves the scene (what its run.solve says, or
-// --solve), then draws a filmstrip and the plots of that run (and, on request, every K-th frame
-// and an MP4 when ffmpeg is installed) under DIR.
+// [--every K] [--format png|svg|pdf] [--video] [--loads] [--trace P,...] [--labels]: solves the
+// scene (what its run.solve says, or --solve), then draws a filmstrip and the plots of that run
+// (and, on request, every K-th frame and an MP4 when ffmpeg is installed) under DIR; --loads draws
+// the applied forces and torques, --trace the paths of points, --labels the body names.
 #include <cstdio>
 
 #include "command.hpp"
@@ -19,7 +20,16 @@ struct RenderCliOptions {
   bool frames = false, video = false;
   int every = 10;
   std::string format = "png";
+  bool loads = false, labels = false;
+  std::vector<std::string> traces{};
 };
+
+// What every frame and every filmstrip tile shows besides the mechanism.
+void set_frame_options(const RenderCliOptions& o, FrameOptions& f) {
+  f.show_loads = o.loads;
+  f.show_labels = o.labels;
+  f.traces = o.traces;
+}
 
 void print_outputs(const RenderOutputs& out) {
   if (!out.frames.empty())
@@ -45,6 +55,8 @@ int render(const RenderCliOptions& o) {
   job.frames = o.frames || o.video;
   job.every = o.every;
   job.video = o.video;
+  set_frame_options(o, job.frame);
+  set_frame_options(o, job.filmstrip_options.tile);
   const bool forward = o.solve.empty() ? scene.run.solve == Solve::forward : o.solve == "forward";
   if (forward) {
     const ForwardOptions run = forward_options(scene, model);
@@ -83,6 +95,13 @@ Command add_render_command(CLI::App& app) {
   sub->add_option("--format", o->format, "filmstrip and plots: png (default), svg or pdf")
       ->check(CLI::IsMember({"png", "svg", "pdf"}));
   sub->add_flag("--video", o->video, "an MP4 from the frames (needs ffmpeg on PATH)");
+  sub->add_flag("--loads", o->loads,
+                "draw the applied forces (arrows) and torques (arcs), sized by their value");
+  sub->add_option("--trace", o->traces,
+                  "trace the paths of points: named points, body.node or body.com "
+                  "(comma-separated or repeated)")
+      ->delimiter(',');
+  sub->add_flag("--labels", o->labels, "write each body's name beside it");
   return {sub, [o] { return render(*o); }};
 }
 

@@ -1,6 +1,6 @@
 // One frame of a run, back to front: traces, ground rails, ground pivots, bodies (with their
-// slots), slider blocks, joints, centres of mass, effort symbols, labels, then the time stamp,
-// scale bar and axes.
+// slots), slider blocks, joints, centres of mass, effort symbols, loads, labels, then the time
+// stamp, scale bar and axes.
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -370,6 +370,7 @@ void draw_frame(cairo_t* cr, const FramePlan& plan, int k, const Decorations& de
   paint.joints();
   if (plan.options.show_com) paint.centres_of_mass();
   paint.efforts();
+  draw_loads(cr, plan, k);
   paint.labels();
   paint.decorations(decorations);
   cairo_restore(cr);

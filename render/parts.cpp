@@ -3,7 +3,9 @@
 // joint's node and whose reaction label "<joint>.Fx" names it.
 #include "parts.hpp"
 
+#include "dynamics/points.hpp"
 #include "mo2d/error.hpp"
+#include "model/suggest.hpp"
 
 namespace mo2d::detail {
 
@@ -75,6 +77,12 @@ Parts mechanism_parts(const Model& m) {
 }
 
 TracePoint trace_point(const Model& m, const std::string& label) {
+  for (int k = 0; k < static_cast<int>(m.points.size()); ++k)
+    if (m.points[k].name == label) {
+      TracePoint t{label, m.points[k].point.body, {}, false};
+      t.named = k;
+      return t;
+    }
   const auto dot = label.rfind('.');
   if (dot != std::string::npos) {
     const std::string body = label.substr(0, dot), what = label.substr(dot + 1);
@@ -85,12 +93,24 @@ TracePoint trace_point(const Model& m, const std::string& label) {
         if (m.bodies[b].node_names[k] == label) return {label, b, m.bodies[b].nodes[k], false};
     }
   }
-  throw Error("render: no point '" + label + "' to trace (use \"body.node\" or \"body.com\")",
+  std::vector<std::string> candidates;
+  for (const NamedPoint& p : m.points) candidates.push_back(p.name);
+  for (const Body& b : m.bodies) {
+    candidates.push_back(b.name + ".com");
+    candidates.insert(candidates.end(), b.node_names.begin(), b.node_names.end());
+  }
+  throw Error("render: no point '" + label + "' to trace" + did_you_mean(label, candidates) +
+                  " (use \"body.node\", \"body.com\" or a named point)",
               label);
 }
 
 Vec2 point_position(const Model& m, const TracePoint& p,
                     const Eigen::Ref<const Eigen::VectorXd>& q0) {
+  if (p.named >= 0) {
+    const BodyPoint& bp = m.points[p.named].point;
+    if (bp.body < 0) return bp.fixed;
+    return local_position_of_point(m.bodies[bp.body], q0, bp.ci, bp.cj, bp.gamma, bp.rho);
+  }
   return p.com ? com_position(m.bodies[p.body], q0) : node_position(p.node, q0);
 }
 

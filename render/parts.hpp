@@ -22,12 +22,13 @@ struct JointPart {
   int force_input = -1;
 };
 
-// A point traced over the motion: a node, or a body's centre of mass.
+// A point traced over the motion: a node, a body's centre of mass or a named point.
 struct TracePoint {
   std::string label{};
   int body = -1;   // colour; -1 ground
-  NodeRef node{};  // used when com is false
+  NodeRef node{};  // used when com is false and named < 0
   bool com = false;
+  int named = -1;  // index in Model::points
 };
 
 struct Parts {
@@ -37,7 +38,8 @@ struct Parts {
 };
 
 Parts mechanism_parts(const Model& m);
-// "body.node" or "body.com"; throws Error naming the label if there is no such point.
+// "body.node", "body.com" or a named point; throws Error naming the label if there is no such
+// point.
 TracePoint trace_point(const Model& m, const std::string& label);
 Vec2 point_position(const Model& m, const TracePoint& p,
                     const Eigen::Ref<const Eigen::VectorXd>& q0);

@@ -22,6 +22,14 @@ struct FramePlan {
   std::vector<std::pair<double, double>> range{};  // per joint: slider coordinate min, max
   std::vector<TracePoint> trace_points{};
   std::vector<std::vector<Vec2>> traces{};  // per trace point, per sample (world)
+  // show_loads: per sample, every force's point and value (world), every torque's centre (its
+  // body's centre of mass) and value; the run's peak of each (max |F|, max |torque|)
+  struct LoadAt {
+    Vec2 at{0, 0}, force{0, 0};
+    double torque = 0;
+  };
+  std::vector<std::vector<LoadAt>> forces{}, torques{};  // [sample][load]
+  std::vector<double> force_peak{}, torque_peak{};
   int time_decimals = 2;
 };
 
@@ -35,5 +43,10 @@ struct Decorations {
 void draw_frame(cairo_t* cr, const FramePlan& plan, int k, const Decorations& decorations);
 
 void check_sample(const Motion& motion, int sample);
+
+// The loads of every sample (FramePlan::forces, torques and their peaks; loads.cpp), and their
+// drawing at sample k (after the effort symbols).
+void plan_loads(FramePlan& p);
+void draw_loads(cairo_t* cr, const FramePlan& p, int k);
 
 }  // namespace mo2d::detail

@@ -12,7 +12,7 @@
 namespace mo2d {
 
 Motion motion_of(const Trajectory& r) {
-  return {r.time, r.q0, r.efforts};
+  return {r.time, r.q0, r.efforts, r.q1};
 }
 
 Motion single_configuration(const Eigen::VectorXd& q0, double t) {
@@ -52,6 +52,8 @@ Pads pads(const FramePlan& p) {
     torques |= j.torque_input >= 0;
     ground_pivots |= j.kind == JointKind::revolute && (j.body1 < 0 || j.body2 < 0);
   }
+  if (!p.forces.empty()) around = std::max(around, s.effort_length + 2.5 * s.line_width);
+  if (!p.torques.empty()) around = std::max(around, s.effort_radius + 2.5 * s.line_width);
   if (o.show_efforts && p.motion->efforts.cols() > 0) {
     if (torques) around = std::max(around, s.effort_radius + 2.5 * s.line_width);
     if (forces) around = std::max(around, 2.5 * s.joint_radius + s.effort_length);
@@ -113,6 +115,7 @@ FramePlan make_plan(const Model& model, const Motion& motion, const FrameOptions
   p.parts = mechanism_parts(model);
   for (const std::string& label : options.traces)
     p.trace_points.push_back(trace_point(model, label));
+  plan_loads(p);
 
   // effort peaks (non-finite efforts are not drawn)
   p.peak.assign(model.n_inputs(), 0.0);

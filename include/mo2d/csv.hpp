@@ -13,7 +13,8 @@ namespace mo2d {
 // reactions; for a forward run energy.kinetic, energy.potential, work.inputs, energy.dissipated,
 // work.loads (forces and torques), work.constraints (time-dependent constraints); then the
 // residuals (Trajectory::residual_labels): residual.position, residual.velocity and, for an
-// inverse run, residual.acceleration.
+// inverse run, residual.acceleration; then the columns added on request (Trajectory::output_labels,
+// mo2d/output_columns.hpp).
 std::string trajectory_csv(const Trajectory& r);
 void write_trajectory_csv(const Trajectory& r, const std::string& path);
 

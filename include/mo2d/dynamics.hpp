@@ -47,6 +47,22 @@ Vec2 point_force(const Model& m, const PointLoad& f, const Eigen::Ref<const Vect
                  const Eigen::Ref<const VectorXd>& q1, double t);
 double torque_value(const Model& m, const TorqueLoad& tq, const Eigen::Ref<const VectorXd>& q0,
                     const Eigen::Ref<const VectorXd>& q1, double t);
+// A spring's length l, its rate dl/dt and its tension T (> 0 pulls its two points together; the
+// law's, clipped for a unilateral spring, or k (l - l0) + c dl/dt) at (t, q0, q1); its power on
+// the mechanism is -T dl/dt.
+struct SpringValue {
+  double length = 0, rate = 0, tension = 0;
+};
+SpringValue spring_value(const Model& m, const SpringLoad& s, const Eigen::Ref<const VectorXd>& q0,
+                         const Eigen::Ref<const VectorXd>& q1, double t);
+// A torsional spring's torque on body 2 (its opposite on body 1; the law's, or
+// -k theta - c (w2 - w1)) and the relative rate w2 - w1; its power is torque (w2 - w1).
+struct TorsionalValue {
+  double torque = 0, rate = 0;
+};
+TorsionalValue torsional_value(const Model& m, const TorsionalLoad& l,
+                               const Eigen::Ref<const VectorXd>& q0,
+                               const Eigen::Ref<const VectorXd>& q1, double t);
 // Input matrix B (n1 x inputs): generalized force per unit effort.
 MatrixXd input_matrix(const Model& m);
 

@@ -13,6 +13,7 @@
 #include "mo2d/law.hpp"
 #include "mo2d/model.hpp"
 #include "mo2d/output.hpp"
+#include "mo2d/output_columns.hpp"
 #include "mo2d/system.hpp"
 #include "mo2d/table.hpp"
 #include "mo2d/trajectory.hpp"

@@ -14,6 +14,7 @@
 #include "mo2d/forward.hpp"
 #include "mo2d/inverse.hpp"
 #include "mo2d/model.hpp"
+#include "mo2d/output_columns.hpp"
 #include "mo2d/system.hpp"
 
 namespace mo2d {
@@ -90,6 +91,9 @@ struct Scene {
   std::vector<std::pair<std::string, Law>> efforts{};
   std::vector<SceneController> controllers{};  // forward: feedback efforts
   RunSettings run{};
+  // `outputs:` the columns mo2d inverse / forward add to the CSV (add_output_columns): every
+  // named point unless told otherwise, loads and centres of mass when asked.
+  OutputRequest outputs{.all_points = true};
   std::vector<LabelUse> labels{};
   // element name -> definition (run keys as "run.t0", "run.step", ...)
   std::vector<std::pair<std::string, Location>> elements{};

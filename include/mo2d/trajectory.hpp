@@ -54,6 +54,11 @@ struct Trajectory {
   Eigen::VectorXd kinetic, potential, input_work, load_work, constraint_work, dissipated;
   bool has_energies() const { return kind == RunKind::forward; }
 
+  // Columns added on request after the run (add_output_columns, mo2d/output_columns.hpp): loads'
+  // values and powers, named points, centres of mass. None unless asked for.
+  std::vector<std::string> output_labels;
+  Eigen::MatrixXd outputs;  // samples x output_labels
+
   RunStats stats;
 
   // Column of a label in q0 (coordinate), q1 and a1 (quasi-velocity), efforts (input, e.g.
@@ -63,6 +68,7 @@ struct Trajectory {
   int rate_column(const std::string& rate_label) const;
   int effort(const std::string& input_label) const;
   int reaction(const std::string& reaction_label) const;
+  int output(const std::string& output_label) const;  // column of outputs ("gas.power")
 };
 
 }  // namespace mo2d

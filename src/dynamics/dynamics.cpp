@@ -240,6 +240,21 @@ void applied_forces(const Model& m, const Eigen::Ref<const VectorXd>& q0,
   scatter_local(m, local, f);
 }
 
+SpringValue spring_value(const Model& m, const SpringLoad& s, const Eigen::Ref<const VectorXd>& q0,
+                         const Eigen::Ref<const VectorXd>& q1, double t) {
+  const SpringState st = spring_state(m, s, q0, q1);
+  return {st.l, st.ldot, spring_force(m, s, st, q0, q1, t).T};
+}
+
+TorsionalValue torsional_value(const Model& m, const TorsionalLoad& l,
+                               const Eigen::Ref<const VectorXd>& q0,
+                               const Eigen::Ref<const VectorXd>& q1, double t) {
+  const double w = relative_rate(m, l, q1);
+  const double tau = l.torque ? torsional_law(m, l, q0, q1, t)
+                              : -l.stiffness * relative_angle(m, l, q0) - l.damping * w;
+  return {tau, w};
+}
+
 MatrixXd input_matrix(const Model& m) {
   MatrixXd B = MatrixXd::Zero(m.n1, m.n_inputs());
   for (int k = 0; k < m.n_inputs(); ++k)

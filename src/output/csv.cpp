@@ -80,6 +80,7 @@ std::string trajectory_csv(const Trajectory& r) {
                           "work.loads", "work.constraints"})
       labels.push_back(l);
   labels.insert(labels.end(), r.residual_labels.begin(), r.residual_labels.end());
+  labels.insert(labels.end(), r.output_labels.begin(), r.output_labels.end());
   return csv_text(
       labels, static_cast<int>(r.time.size()),
       [&](Row& row, int k) {
@@ -89,6 +90,7 @@ std::string trajectory_csv(const Trajectory& r) {
                            r.load_work[k], r.constraint_work[k]})
             row.put(v);
         row.put_row(r.residuals, k);
+        if (!r.output_labels.empty()) row.put_row(r.outputs, k);
       },
       r.time);
 }

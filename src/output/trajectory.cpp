@@ -40,5 +40,8 @@ int Trajectory::effort(const std::string& l) const {
 int Trajectory::reaction(const std::string& l) const {
   return label_index(reaction_labels, l, "reaction");
 }
+int Trajectory::output(const std::string& l) const {
+  return label_index(output_labels, l, "output column");
+}
 
 }  // namespace mo2d

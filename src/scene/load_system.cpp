@@ -475,6 +475,7 @@ void read_instances(Context& c, const YAML::Node& node, Subsystems& lib) {
     c.out.add_instance(name, *sub.system, p);
     for (const auto& n : sub.info.nodes) c.info.nodes.push_back(name + "." + n);
     for (const auto& b : sub.info.bodies) c.info.bodies.push_back(name + "." + b);
+    for (const auto& p : sub.info.points) c.info.points.push_back(name + "." + p);
     for (const auto& [e, l] : sub.info.elements) c.info.elements.emplace_back(name + "." + e, l);
     for (const auto& [e, l] : sub.info.law_labels)
       c.info.law_labels.emplace_back(name + "." + e, l);
@@ -497,6 +498,7 @@ SystemInfo read_system(const Reader& r, const YAML::Node& block, System& out, bo
   read_coordinates(c, block["coordinates"]);
   read_constraints(c, block["constraints"]);
   read_loads(c, block["loads"], root);
+  read_points(r, block["points"], out, c.info);
   return std::move(c.info);
 }
 

@@ -17,6 +17,7 @@ namespace mo2d::scene_detail {
 struct SystemInfo {
   std::vector<std::string> nodes{};
   std::vector<std::string> bodies{};
+  std::vector<std::string> points{};  // named points ("instance.point")
   std::vector<std::pair<std::string, Location>> elements{};
   // where each argument of a load's law is written: "element/label" (element: full name)
   std::vector<std::pair<std::string, Location>> law_labels{};
@@ -38,13 +39,18 @@ struct Subsystems {
 };
 
 inline constexpr std::initializer_list<const char*> kSystemKeys = {
-    "ground", "bodies", "joints", "coordinates", "constraints", "loads", "instances"};
+    "ground", "bodies", "joints", "coordinates", "constraints", "loads", "instances", "points"};
 
 // A law from an expression of t, the parameters and quantities of the state (its other names,
 // resolved by build_model); a function of time only when it names none. `uses` (if given)
 // receives where each argument is written, as "element/label".
 Law state_law(const Reader& r, const YAML::Node& node, const std::string& what,
               const std::string& element, std::vector<std::pair<std::string, Location>>* uses);
+
+// points: {name: {body, point}} -> System::add_point (load_outputs.cpp).
+void read_points(const Reader& r, const YAML::Node& node, System& out, SystemInfo& info);
+// outputs: {loads, com, points} -> Scene::outputs (load_outputs.cpp).
+void read_outputs(const Reader& r, const YAML::Node& node, const SystemInfo& info, Scene& scene);
 
 // Fill `out` from `block`; root: gravity is allowed in loads.
 SystemInfo read_system(const Reader& r, const YAML::Node& block, System& out, bool root,

@@ -9,7 +9,10 @@
 // block; pins in slots as a slot cut in the slotted body with the pin; the ground hatched at its
 // pivots and rails; actuated joints with an arc (torque) or an arrow (force) whose length and
 // colour give the effort relative to the run's peak of that input (red: positive, blue:
-// negative); traces of chosen points; time stamp, scale bar, axes and optional labels.
+// negative); traces of chosen points; optionally the applied loads (FrameOptions::show_loads:
+// an arrow from each force's point along the force, a curved arrow around each torque's body,
+// sized by the value relative to the run's peak of that load); time stamp, scale bar, axes and
+// optional labels (body names).
 //
 // Framing: the view fits the whole motion (every sample of the run) with a margin and is the same
 // for every frame of the run; x and y have the same scale (aspect ratio preserved).
@@ -30,6 +33,9 @@ struct Motion {
   Eigen::VectorXd time{};     // samples
   Eigen::MatrixXd q0{};       // samples x Model::n0
   Eigen::MatrixXd efforts{};  // samples x Model::n_inputs(), or 0 columns (no effort symbols)
+  // samples x Model::n1, or 0 columns: the quasi-velocities, which the loads drawn with
+  // FrameOptions::show_loads may depend on (motion_of fills them)
+  Eigen::MatrixXd q1{};
 };
 Motion motion_of(const Trajectory& r);
 // One configuration (e.g. Model::q0) at time t, without efforts.
@@ -42,6 +48,7 @@ struct FrameStyle {
   Rgb ground = rgb_hex(0x555555);      // hatching and rails of the ground
   Rgb positive = rgb_hex(0xC0392B);    // effort > 0 (counter-clockwise torque, force along +axis)
   Rgb negative = rgb_hex(0x2166AC);    // effort < 0
+  Rgb load = rgb_hex(0x5E3C99);        // applied forces and torques (show_loads): dark violet
   std::vector<Rgb> palette = okabe_ito();  // body k gets palette[k % size]
   // Sizes in points (1/72 in); pixels = points * dpi / 72.
   double body_width = 7.0;      // width of the rounded body outlines
@@ -68,7 +75,13 @@ struct FrameOptions {
   bool show_scale_bar = true;
   bool show_axes = true;
   bool show_labels = false;  // body names
-  // Points traced over the whole motion: node labels ("crank.A") or centres of mass ("rod.com").
+  // Applied forces (Model::forces: arrows from their points, of length style.effort_length at the
+  // run's peak |F| of that force) and torques (Model::torques: arcs around their body's centre of
+  // mass, sweeping up to 270 degrees at the run's peak, counter-clockwise for a positive torque),
+  // in style.load. Their laws are evaluated at (t, q0, q1) of each sample: Motion::q1 is needed.
+  bool show_loads = false;
+  // Points traced over the whole motion: node labels ("crank.A"), centres of mass ("rod.com") or
+  // named points (System::add_point: "tip", "leg.foot").
   std::vector<std::string> traces{};
   FrameStyle style{};
 };

@@ -1,0 +1,132 @@
+// The columns a run adds on request (mo2d/output_columns.hpp): loads' values and powers, named
+// points, centres of mass, from the recorded state of every sample.
+#include "mo2d/output_columns.hpp"
+
+#include <cmath>
+#include <sstream>
+
+#include "dynamics/points.hpp"
+#include "mo2d/dynamics.hpp"
+#include "mo2d/error.hpp"
+#include "model/suggest.hpp"
+
+namespace mo2d {
+
+namespace {
+
+// The named points asked for, as indices into Model::points.
+std::vector<int> requested_points(const Model& m, const OutputRequest& q) {
+  std::vector<int> out;
+  if (q.all_points) {
+    for (int k = 0; k < static_cast<int>(m.points.size()); ++k) out.push_back(k);
+    return out;
+  }
+  std::vector<std::string> names;
+  for (const NamedPoint& p : m.points) names.push_back(p.name);
+  for (const std::string& name : q.points) {
+    bool found = false;
+    for (int k = 0; k < static_cast<int>(names.size()); ++k)
+      if (names[k] == name) out.push_back(k), found = true;
+    if (!found)
+      throw Error("outputs: no named point '" + name + "'" + did_you_mean(name, names) +
+                      (names.empty() ? " (the model has no named points: System::add_point)" : ""),
+                  name);
+  }
+  return out;
+}
+
+// Bodies whose centre of mass is written: every body with a mass.
+bool has_com(const Body& b) {
+  return b.mass > 0;
+}
+
+}  // namespace
+
+std::vector<std::string> output_column_labels(const Model& m, const OutputRequest& q) {
+  std::vector<std::string> l;
+  auto add = [&](const std::string& name, std::initializer_list<const char*> fields) {
+    for (const char* f : fields) l.push_back(name + "." + f);
+  };
+  if (q.loads) {
+    for (const PointLoad& f : m.forces) add(f.name, {"fx", "fy", "power"});
+    for (const TorqueLoad& t : m.torques) add(t.name, {"torque", "power"});
+    for (const SpringLoad& s : m.springs) add(s.name, {"length", "rate", "tension", "power"});
+    for (const TorsionalLoad& s : m.torsional_springs) add(s.name, {"torque", "rate", "power"});
+  }
+  for (int k : requested_points(m, q)) add(m.points[k].name, {"x", "y", "vx", "vy"});
+  if (q.com)
+    for (const Body& b : m.bodies)
+      if (has_com(b)) add(b.name + ".com", {"x", "y", "vx", "vy"});
+  return l;
+}
+
+void output_column_values(const Model& m, const OutputRequest& q,
+                          const Eigen::Ref<const Eigen::VectorXd>& q0,
+                          const Eigen::Ref<const Eigen::VectorXd>& q1, double t,
+                          Eigen::Ref<Eigen::VectorXd> out) {
+  Eigen::Index c = 0;
+  auto put = [&](double v) {
+    if (c >= out.size()) throw Error("outputs: more values than columns", "outputs", t);
+    out[c++] = v;
+  };
+  auto put_state = [&](const detail::PointState& s) {
+    for (double v : {s.p.x(), s.p.y(), s.v.x(), s.v.y()}) put(v);
+  };
+  if (q.loads) {
+    for (const PointLoad& f : m.forces) {  // F . v of the point it acts on
+      const Vec2 F = point_force(m, f, q0, q1, t);
+      const BodyPoint bp{f.body, f.ci, f.cj, f.gamma, f.rho, Vec2(0, 0)};
+      for (double v : {F.x(), F.y(), F.dot(detail::point_state(m, bp, q0, q1).v)}) put(v);
+    }
+    for (const TorqueLoad& tq : m.torques) {
+      const double tau = torque_value(m, tq, q0, q1, t);
+      put(tau);
+      put(tau * omega_value(m.bodies[tq.body].omega, q1));
+    }
+    for (const SpringLoad& s : m.springs) {
+      const SpringValue v = spring_value(m, s, q0, q1, t);
+      for (double x : {v.length, v.rate, v.tension, -v.tension * v.rate}) put(x);
+    }
+    for (const TorsionalLoad& s : m.torsional_springs) {
+      const TorsionalValue v = torsional_value(m, s, q0, q1, t);
+      for (double x : {v.torque, v.rate, v.torque * v.rate}) put(x);
+    }
+  }
+  for (int k : requested_points(m, q)) put_state(detail::point_state(m, m.points[k].point, q0, q1));
+  if (q.com)
+    for (const Body& b : m.bodies)
+      if (has_com(b))
+        put_state({com_position(b, q0),
+                   detail::local_velocity_of_point(b, q1, b.ci, b.cj, b.gamma, b.rho)});
+  if (c != out.size()) throw Error("outputs: fewer values than columns", "outputs", t);
+}
+
+void add_output_columns(const Model& m, Trajectory& r, const OutputRequest& q) {
+  if (q.empty()) return;
+  const std::vector<std::string> labels = output_column_labels(m, q);
+  for (const std::string& l : labels)
+    for (const std::string& had : r.output_labels)
+      if (l == had) throw Error("outputs: column '" + l + "' is already in the trajectory", l);
+  const Eigen::Index N = r.time.size(), n = static_cast<Eigen::Index>(labels.size());
+  if (r.q0.rows() != N || r.q1.rows() != N || r.q0.cols() != m.n0 || r.q1.cols() != m.n1)
+    throw Error("outputs: the trajectory's states do not match the model '" + m.name + "'",
+                "outputs");
+  Eigen::MatrixXd values(N, r.outputs.cols() + n);
+  if (r.outputs.cols() > 0) values.leftCols(r.outputs.cols()) = r.outputs;
+  Eigen::VectorXd row(n);
+  for (Eigen::Index k = 0; k < N; ++k) {
+    output_column_values(m, q, r.q0.row(k).transpose(), r.q1.row(k).transpose(), r.time[k], row);
+    for (Eigen::Index j = 0; j < n; ++j) {
+      if (!std::isfinite(row[j])) {
+        std::ostringstream s;
+        s << "outputs: '" << labels[j] << "' is not finite at t = " << r.time[k] << " s";
+        throw Error(s.str(), labels[j], r.time[k]);
+      }
+      values(k, r.outputs.cols() + j) = row[j];
+    }
+  }
+  r.outputs = std::move(values);
+  r.output_labels.insert(r.output_labels.end(), labels.begin(), labels.end());
+}
+
+}  // namespace mo2d
