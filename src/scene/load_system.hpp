@@ -46,6 +46,10 @@ inline constexpr std::initializer_list<const char*> kSystemKeys = {
 Law state_law(const Reader& r, const YAML::Node& node, const std::string& what,
               const std::string& element, std::vector<std::pair<std::string, Location>>* uses);
 
+// The `friction` entry of joint `name` (load_friction.cpp), if any, added to `out`.
+void read_joint_friction(const Reader& r, const YAML::Node& joint, const std::string& name,
+                         bool revolute, System& out);
+
 // Fill `out` from `block`; root: gravity is allowed in loads.
 SystemInfo read_system(const Reader& r, const YAML::Node& block, System& out, bool root,
                        Subsystems& library);
