@@ -63,6 +63,15 @@ struct TorsionalValue {
 TorsionalValue torsional_value(const Model& m, const TorsionalLoad& l,
                                const Eigen::Ref<const VectorXd>& q0,
                                const Eigen::Ref<const VectorXd>& q1, double t);
+// The value of every joint friction (Model::frictions; FrictionDef in mo2d/system.hpp) at the
+// state (q0, q1) with the joint reactions `reactions` (Model::reactions order): out[k] =
+// -viscous v - mu N sgn(v), v the joint's rate, N its normal force from the reaction,
+// sgn(v) = tanh(v / regularization) when regularized (forward dynamics), else sign(v) with
+// sign(0) = 0 (inverse dynamics). out has Model::frictions.size() entries.
+void friction_forces(const Model& m, const Eigen::Ref<const VectorXd>& q0,
+                     const Eigen::Ref<const VectorXd>& q1,
+                     const Eigen::Ref<const VectorXd>& reactions, bool regularized,
+                     Eigen::Ref<VectorXd> out);
 // Input matrix B (n1 x inputs): generalized force per unit effort.
 MatrixXd input_matrix(const Model& m);
 

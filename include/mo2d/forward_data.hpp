@@ -120,6 +120,10 @@ struct ForwardData {
   VectorXd lam_ls;  // m1: least-squares multipliers of A^T lambda = B u - (M a - f), regularized
   std::vector<double> edge_force;  // per merge edge: its 2 (node) or 1 (rotation) forces
   VectorXd reactions;              // nr: Model::reactions
+  // Joint friction (Model::frictions; src/dynamics/friction.hpp), written by evaluation: the
+  // values consistent with the reactions at the accelerations a (iterated per evaluation, sgn(v)
+  // = tanh(v / v_s)); friction_next the iteration's next values.
+  VectorXd friction, friction_next;
 
   RunStats stats;  // counters of the run (evaluations, factorizations, projections, ...)
 
@@ -161,6 +165,9 @@ struct ForwardData {
   void set_inputs(const VectorXd& efforts, double t);
   void load(double t, const VectorXd& q0, const VectorXd& q1, bool baumgarte);
   void evaluate(double t, const VectorXd& q0, const VectorXd& q1);
+  void solve_formulation(double t, const VectorXd& q0);
+  void evaluate_friction(double t, const VectorXd& q0, const VectorXd& q1);
+  void reactions_at(double t, const VectorXd& q0, const VectorXd& q1);
   void solve_augmented_lagrangian(double t, const VectorXd& q0);
   void solve_lagrange(double t, const VectorXd& q0);
   void solve_null_space(double t, const VectorXd& q0);

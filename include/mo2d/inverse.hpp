@@ -54,6 +54,11 @@ struct InverseOptions {
   // (a switch of assembly mode, or a singular passage the samples do not resolve)
   double branch_jump = 0.5;
   ComplementMethod complement = ComplementMethod::prescribed;
+  // Joint friction (FrictionDef): the fixed-point iteration of the friction and the reactions per
+  // sample stops when no friction changes by more than this fraction of itself; a sample that
+  // needs more than max_friction_iterations is an error naming the friction and the time.
+  double friction_tolerance = 1e-12;
+  int max_friction_iterations = 200;
   // Budgets (mo2d/budget.hpp): wall-clock seconds of the run (<= 0 or inf: none), the memory of
   // its dense matrices and results (bytes, estimated before allocating), a progress monitor
   // called about every monitor_interval seconds.
@@ -87,6 +92,8 @@ struct InverseData {
   VectorXd u;           // efforts, one per input (Model::inputs)
   VectorXd lambda;      // multipliers of the velocity rows (M a1 = f + B u - A^T lambda)
   VectorXd reactions;   // Model::reactions
+  VectorXd friction;    // Model::frictions: their values (N, N m), consistent with the reactions
+  int friction_iterations = 0;  // fixed-point iterations of the last sample (0: no friction)
   double residual_position = 0, residual_velocity = 0, residual_acceleration = 0;
   int newton_iterations = 0;
   double pivot_ratio = 0;  // min/max |pivot| of the LU of the dimensionless K (a cheap
@@ -113,6 +120,7 @@ struct InverseData {
   std::vector<double> edge_force;  // per merge edge: 2 (node) or 1 (rotation) values
   std::vector<int> edge_offset;
   std::vector<detail::SlotEntry> entries;  // A entries attributed to body slots (reactions)
+  VectorXd friction_next, local_base;      // friction iteration: next values; M a - f, local
   bool has_previous = false;
   double t_prev = 0;
   VectorXd q0_prev, q1_prev, a1_prev;

@@ -234,6 +234,16 @@ struct TorsionalLoad {
   CompiledLaw torque;  // empty: linear
 };
 
+// Friction in a joint (FrictionDef; evaluated in src/dynamics/friction.cpp). Its value F (N or
+// N m) acts as the generalized force F * terms; its rate is v = sum coef * q1[var] over terms.
+struct FrictionLoad {
+  std::string name, joint;
+  std::vector<std::pair<VarRef, double>> terms;  // like an Input's column of B
+  int reaction = -1;  // column of the joint's "Fx" in the reactions ("Fy" follows)
+  int slider = -1;    // Model::constraints index of the slide (axis direction); -1: revolute
+  double viscous = 0, mu = 0, radius = 0, regularization = 1e-3;
+};
+
 // A named point (System::add_point): an output of every run and a quantity laws may read.
 struct NamedPoint {
   std::string name;
@@ -320,6 +330,7 @@ struct Model {
   std::vector<SpringLoad> springs;
   std::vector<TorsionalLoad> torsional_springs;
   std::vector<NamedPoint> points;
+  std::vector<FrictionLoad> frictions;
   // Derived quantities by label (mo2d/law.hpp): bodies, joints, springs, points, node aliases.
   std::unordered_map<std::string, Quantity> quantities;
 

@@ -204,6 +204,25 @@ struct TorsionalSpringDef {
   Law torque{};                  // N m on body 2 (and -torque on body 1); empty: the linear law
 };
 
+// Friction in a joint (src/dynamics/friction.hpp): a generalized force along the joint's own
+// motion that opposes its relative rate v (a prismatic joint or pin-in-slot: the slide rate
+// "joint.q" rate, a force on the slider and the opposite on the axis body; a revolute joint: the
+// relative rate w2 - w1, a torque on body 2 and the opposite on body 1):
+//   F = -viscous v - mu N sgn(v),
+// N the normal force from the joint's reaction (a slide: the reaction's component normal to the
+// axis, the lock torque left out; a revolute: radius * |reaction|, the pin's friction arm).
+// Inverse dynamics: sgn(v) = sign(v) (0 at v = 0) and the reaction and the friction solved
+// together by a fixed-point iteration per sample (Orsino Example 4.5). Forward dynamics:
+// sgn(v) = tanh(v / regularization), iterated with the reaction at the current accelerations.
+struct FrictionDef {
+  std::string name{};
+  std::string joint{};           // a revolute, prismatic or pin-in-slot joint of this System
+  double viscous = 0;            // N s / m (slide) or N m s / rad (revolute)
+  double mu = 0;                 // Coulomb coefficient (>= 0)
+  double radius = 0;             // m, revolute only: friction torque mu * radius * |reaction|
+  double regularization = 1e-3;  // v_s (m/s or rad/s) of tanh(v / v_s) in forward dynamics
+};
+
 // A named point fixed in a body ("ground" allowed), given in the System's frame at the initial
 // configuration: its position and velocity are quantities laws may read ("name.x", "name.vy")
 // and outputs of every run.
@@ -245,6 +264,7 @@ class System {
   System& add_spring(SpringDef spring);
   System& add_torsional_spring(TorsionalSpringDef spring);
   System& add_point(PointDef point);
+  System& add_friction(FrictionDef friction);
   System& add_instance(std::string name, const System& sub, Placement placement = {});
   System& set_gravity(Vec2 g);
 
@@ -262,6 +282,7 @@ class System {
   const std::vector<SpringDef>& springs() const { return springs_; }
   const std::vector<TorsionalSpringDef>& torsional_springs() const { return torsional_; }
   const std::vector<PointDef>& points() const { return points_; }
+  const std::vector<FrictionDef>& frictions() const { return frictions_; }
   const std::vector<Instance>& instances() const { return instances_; }
   const Vec2& gravity() const { return gravity_; }
 
@@ -280,6 +301,7 @@ class System {
   std::vector<SpringDef> springs_;
   std::vector<TorsionalSpringDef> torsional_;
   std::vector<PointDef> points_;
+  std::vector<FrictionDef> frictions_;
   std::vector<Instance> instances_;
   Vec2 gravity_{0, 0};
 };

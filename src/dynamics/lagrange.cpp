@@ -15,6 +15,10 @@ Trajectory inverse_dynamics_lagrange(const Model& m, std::span<const Prescribed>
                                      const InverseOptions& options) {
   if (m.reduction != Reduction::none)
     throw Error("inverse_dynamics_lagrange needs a model built with Reduction::none", m.name);
+  if (!m.frictions.empty())
+    throw Error("inverse_dynamics_lagrange: joint friction '" + m.frictions[0].name +
+                    "' is not part of this validation formulation (use inverse_dynamics)",
+                m.frictions[0].name);
   // kinematics (positions, velocities) from the same per-sample solver; dynamics solved here
   InverseData d(m, prescribed, options);
   const MatrixXd M = mass_matrix(m);

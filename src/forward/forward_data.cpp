@@ -1,6 +1,7 @@
 // Forward dynamics, one evaluation: accelerations in three formulations, projection on the
-// constraint manifolds, reactions of a recorded state (the stages of ForwardData,
-// mo2d/forward_data.hpp) and forward_accelerations. The recorder: recorder.cpp.
+// constraint manifolds (the stages of ForwardData, mo2d/forward_data.hpp) and
+// forward_accelerations; reactions and joint friction: forward_reactions.cpp. The recorder:
+// recorder.cpp.
 #include "mo2d/forward_data.hpp"
 
 #include <Eigen/QR>
@@ -94,6 +95,7 @@ ForwardData::ForwardData(const Model& model, const ForwardOptions& opt) : m(mode
   r1 = VectorXd::Zero(m.m1);
   edge_force.assign(detail::merge_edge_layout(m, edge_offset), 0.0);
   reactions = VectorXd::Zero(m.n_reactions());
+  friction = friction_next = VectorXd::Zero(static_cast<int>(m.frictions.size()));
   la = VectorXd::Zero(m.n_slots);
   w = VectorXd::Zero(m.n1);
   lam_ls = VectorXd::Zero(m.m1);
@@ -222,9 +224,27 @@ void ForwardData::load(double t, const VectorXd& q0, const VectorXd& q1, bool ba
   scatter_local(m, local, f);
 }
 
-// a and lambda from rhs = f + B u by the options' formulation; checks that they are finite.
+// a and lambda from rhs = f + B u (+ the joint friction) by the options' formulation; checks
+// that they are finite.
 void ForwardData::evaluate(double t, const VectorXd& q0, const VectorXd& q1) {
-  rhs = f + Bu;
+  if (m.frictions.empty()) {
+    rhs = f + Bu;
+    solve_formulation(t, q0);
+  } else {
+    evaluate_friction(t, q0, q1);
+  }
+  if (!q0.allFinite() || !q1.allFinite())
+    throw Error("forward dynamics of '" + m.name +
+                    "': the integrator produced a non-finite state "
+                    "at t = " +
+                    fmt(t),
+                m.name, t);
+  if (!a.allFinite())
+    throw Error("forward dynamics of '" + m.name + "': non-finite accelerations at t = " + fmt(t),
+                m.name, t);
+}
+
+void ForwardData::solve_formulation(double t, const VectorXd& q0) {
   switch (o.formulation) {
     case Formulation::augmented_lagrangian:
       solve_augmented_lagrangian(t, q0);
@@ -236,15 +256,6 @@ void ForwardData::evaluate(double t, const VectorXd& q0, const VectorXd& q1) {
       solve_null_space(t, q0);
       break;
   }
-  if (!q0.allFinite() || !q1.allFinite())
-    throw Error("forward dynamics of '" + m.name +
-                    "': the integrator produced a non-finite state "
-                    "at t = " +
-                    fmt(t),
-                m.name, t);
-  if (!a.allFinite())
-    throw Error("forward dynamics of '" + m.name + "': non-finite accelerations at t = " + fmt(t),
-                m.name, t);
 }
 
 void ForwardData::solve_augmented_lagrangian(double t, const VectorXd& q0) {
@@ -435,23 +446,6 @@ void ForwardData::project(double t, VectorXd& q0, VectorXd& q1, double tol_pos, 
     llt_G1.solveInPlace(dq1);
     q1 += dq1;
   }
-}
-
-void ForwardData::compute_reactions(double t, const VectorXd& q0, const VectorXd& q1) {
-  A.setZero();
-  entries_.clear();
-  detail::SlotRecordSink sink{A, m, entries_};
-  for (const auto& k : m.constraints) detail::velocity_rows(m, k, q0, t, b, sink);
-  body_inertia(m, a, la);
-  body_applied(m, q0, q1, t, local);
-  la -= local;  // M a - f, body-local
-  w.setZero();
-  scatter_local(m, la, w);
-  inputs(t, q0, q1);
-  if (m.m1 > 0) {
-    lam_ls = regularized_normal_solve(A, Bu - w, 1e-14);
-  }
-  detail::joint_reactions(m, entries_, lam_ls, u, la, edge_force, edge_offset, reactions);
 }
 
 double ForwardData::pivot_indicator(double t, const VectorXd& q0) {

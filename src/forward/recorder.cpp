@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "dynamics/friction.hpp"
 #include "forward/forward_run.hpp"
 #include "mo2d/dynamics.hpp"
 #include "mo2d/error.hpp"
@@ -20,6 +21,8 @@ void energy_rates(ForwardData& d, double t, const VectorXd& q0, const VectorXd& 
   rates[kConstraintWork] =
       d.m.m1 > 0 && d.b.lpNorm<Eigen::Infinity>() > 0 ? q1.dot(d.M * d.a - d.f - d.Bu) : 0.0;
   rates[kDissipated] = damping_power(d.m, q0, q1);
+  // joint friction (its values at this evaluation) dissipates -F v >= 0
+  if (!d.m.frictions.empty()) rates[kDissipated] -= friction_power(d.m, d.friction, q1);
 }
 
 // An integrator that does not project (cvode_adams, baumgarte) cannot hold the constraints

@@ -9,6 +9,8 @@
 #include <ctime>
 
 #include "constraints/constraints.hpp"
+#include "dynamics/friction.hpp"
+#include "inverse/inverse_stages.hpp"
 #include "kinematics/residuals.hpp"
 #include "kinematics/solve_positions.hpp"
 #include "linalg/small_lu.hpp"
@@ -351,7 +353,8 @@ void velocities_and_accelerations(const Model& m, InverseData& d, double t) {
   d.residual_acceleration = m.m1 ? (d.row_residual - d.c).lpNorm<Eigen::Infinity>() : 0.0;
 }
 
-// Efforts and multipliers (Theorem 4.3).
+// Efforts and multipliers (Theorem 4.3): C, C^T B and M a - f (body-local, in d.local_a); then
+// the efforts, multipliers and reactions, with the joint friction iterated (friction.cpp).
 void efforts_and_multipliers(const Model& m, InverseData& d, double t) {
   const int dof = m.dof;
   const auto A = d.K.topRows(m.m1);
@@ -359,8 +362,6 @@ void efforts_and_multipliers(const Model& m, InverseData& d, double t) {
   body_inertia(m, d.a1, d.local_a);
   body_applied(m, d.q0, d.q1, t, d.local);
   d.local_a -= d.local;  // M a - f, body-local
-  d.w.setZero();
-  scatter_local(m, d.local_a, d.w);
   // C = K^-1 [0; I]: columns of K^-1 at the prescribed rows (eq. 2.29, independent variables =
   // the prescribed coordinates); then C^T B u = C^T w gives the efforts.
   for (int k = 0; k < dof; ++k) {
@@ -377,6 +378,19 @@ void efforts_and_multipliers(const Model& m, InverseData& d, double t) {
                     prescribed_values(d) +
                     "): the inputs do not act on the prescribed coordinates (C^T B is singular)",
                 m.inputs.empty() ? "" : m.inputs[0].label, t);
+  if (m.frictions.empty())
+    inverse_efforts_and_reactions(m, d);
+  else
+    inverse_friction(m, d, t);
+}
+
+}  // namespace
+
+void inverse_efforts_and_reactions(const Model& m, InverseData& d) {
+  // w = M a - f - (friction), generalized; the efforts C^T B u = C^T w
+  d.w.setZero();
+  if (!m.frictions.empty()) detail::add_friction_forces(m, d.friction, -1.0, true, d.local_a, d.w);
+  scatter_local(m, d.local_a, d.w);
   d.Ctw.noalias() = d.S.transpose() * d.w;
   d.u = d.lu_u.solve(d.Ctw);
   // multipliers: K^T [lambda; mu] = B u - (M a - f), with mu = 0 for an exact solution
@@ -387,9 +401,10 @@ void efforts_and_multipliers(const Model& m, InverseData& d, double t) {
   d.lu_K->solve_transpose_in_place(d.z);
   d.z.array() *= d.k_row.array();
   d.lambda = d.z.head(m.m1);
+  // ---- reactions: direct from multipliers, or split at eliminated joints (d.local_a is spent)
+  detail::joint_reactions(m, d.entries, d.lambda, d.u, d.local_a, d.edge_force, d.edge_offset,
+                          d.reactions);
 }
-
-}  // namespace
 
 void inverse_dynamics_sample(const Model& m, InverseData& d, double t) {
   d.t = t;
@@ -400,10 +415,6 @@ void inverse_dynamics_sample(const Model& m, InverseData& d, double t) {
   check_singular_passage(m, d, t);
   velocities_and_accelerations(m, d, t);
   efforts_and_multipliers(m, d, t);
-
-  // ---- reactions: direct from multipliers, or split at eliminated joints
-  detail::joint_reactions(m, d.entries, d.lambda, d.u, d.local_a, d.edge_force, d.edge_offset,
-                          d.reactions);
   check_finite_sample(m, d, t);
   d.q0_prev = d.q0;
   d.q1_prev = d.q1;

@@ -98,6 +98,8 @@ InverseData::InverseData(const Model& m, std::span<const Prescribed> prescribed,
   u = VectorXd::Zero(nu);
   lambda = VectorXd::Zero(m.m1);
   reactions = VectorXd::Zero(m.n_reactions());
+  friction = friction_next = VectorXd::Zero(static_cast<int>(m.frictions.size()));
+  local_base = VectorXd::Zero(m.frictions.empty() ? 0 : m.n_slots);
   s = s_dot = s_ddot = VectorXd::Zero(dof);
   psi = trial = VectorXd::Zero(m.m0);
   q0_trial = VectorXd::Zero(m.n0);

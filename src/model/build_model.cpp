@@ -72,6 +72,7 @@ Model build_model(const System& system, const BuildOptions& options) {
 
   // 6. loads; 7. merge edges of the eliminated joints
   add_loads(flat, elements, reduced, m);
+  add_frictions(flat, elements, reduced, m);
   add_merge_edges(elements, reduced, joint_reactions, m);
 
   // 8. assemble

@@ -81,6 +81,7 @@ struct Flat {
   std::vector<Owned<SpringDef>> springs;  // attachment points in world
   std::vector<Owned<TorsionalSpringDef>> torsional;
   std::vector<Owned<PointDef>> points;  // point in world
+  std::vector<Owned<FrictionDef>> frictions;
 };
 
 Flat flatten(const System& system);
@@ -217,6 +218,8 @@ void check_linear_in_rates(const Constraint::UserVelocity& c, const VelocityCons
 // m.forces, m.torques, m.springs, m.torsional_springs, m.points, then m.quantities (the derived
 // quantities laws may read, laws.cpp) and the loads' laws compiled against them.
 void add_loads(const Flat& flat, const Elements& el, const Reduced& red, Model& m);
+// Joint friction (frictions.cpp): after the rows (reactions, slides) are known.
+void add_frictions(const Flat& flat, const Elements& el, const Reduced& red, Model& m);
 // laws.cpp: m.quantities from the bodies, nodes, revolute joints, springs and points.
 void add_quantities(const Flat& flat, const Elements& el, const Reduced& red, Model& m);
 // A body point from a point given in world coordinates at the initial configuration ("ground"

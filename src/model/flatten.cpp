@@ -88,6 +88,7 @@ void flatten_loads(const System& s, const std::string& prefix, const Frame& fram
     out.springs.push_back({std::move(w), tree_index, prefix});
   }
   for (const auto& ts : s.torsional_springs()) out.torsional.push_back({ts, tree_index, prefix});
+  for (const auto& fr : s.frictions()) out.frictions.push_back({fr, tree_index, prefix});
   for (const auto& p : s.points()) {
     PointDef w = p;
     w.point = frame.apply(p.point);

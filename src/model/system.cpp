@@ -69,6 +69,10 @@ System& System::add_torsional_spring(TorsionalSpringDef spring) {
   torsional_.push_back(std::move(spring));
   return *this;
 }
+System& System::add_friction(FrictionDef friction) {
+  frictions_.push_back(std::move(friction));
+  return *this;
+}
 System& System::add_instance(std::string name, const System& sub, Placement placement) {
   instances_.push_back({std::move(name), std::make_shared<const System>(sub), placement});
   return *this;

@@ -191,7 +191,7 @@ void read_joints(Context& c, const YAML::Node& node) {
     if (!value.IsMap()) r.fail(value, what + ": expected a map, got " + type_name(value));
     const std::string type = r.string(r.required(value, "type", what), what + ".type");
     if (type == "revolute") {
-      r.check_keys(value, {"type", "node_a", "node_b", "actuated"}, what);
+      r.check_keys(value, {"type", "node_a", "node_b", "actuated", "friction"}, what);
       RevoluteDef j;
       j.name = name;
       j.node_a = node_ref(c, value, "node_a", what);
@@ -201,7 +201,7 @@ void read_joints(Context& c, const YAML::Node& node) {
       c.out.add_revolute(std::move(j));
       c.revolutes.push_back(name);
     } else if (type == "prismatic") {
-      r.check_keys(value, {"type", "axis_from", "axis_to", "slider", "actuated"}, what);
+      r.check_keys(value, {"type", "axis_from", "axis_to", "slider", "actuated", "friction"}, what);
       PrismaticDef j;
       j.name = name;
       j.axis_from = node_ref(c, value, "axis_from", what);
@@ -212,7 +212,8 @@ void read_joints(Context& c, const YAML::Node& node) {
       c.out.add_prismatic(std::move(j));
     } else if (type == "pin_in_slot") {
       r.check_keys(value,
-                   {"type", "axis_from", "axis_to", "pin", "actuated_slide", "actuated_rotation"},
+                   {"type", "axis_from", "axis_to", "pin", "actuated_slide", "actuated_rotation",
+                    "friction"},
                    what);
       PinInSlotDef j;
       j.name = name;
@@ -230,6 +231,7 @@ void read_joints(Context& c, const YAML::Node& node) {
                                 did_you_mean(type, types) +
                                 "; expected revolute, prismatic or pin_in_slot");
     }
+    read_joint_friction(r, value, name, type == "revolute", c.out);
     c.info.elements.emplace_back(name, r.at(key));
   }
 }

@@ -316,6 +316,16 @@ TEST(NoAllocation, Rrr3Sample) {
   expect_no_allocation(mo2d::mechanisms::rrr3());
 }
 
+// Joint friction: the fixed-point iteration of the friction and the reactions per sample reuses
+// the workspace (InverseData::friction, friction_next, local_base).
+TEST(NoAllocation, SliderCrankWithFrictionSample) {
+  mo2d::mechanisms::Example ex = mo2d::mechanisms::slider_crank();
+  ex.system.add_friction({.name = "rail_friction", .joint = "rail", .mu = 0.2});
+  ex.system.add_friction(
+      {.name = "pin_friction", .joint = "crank_pin", .viscous = 0.01, .mu = 0.2, .radius = 0.01});
+  expect_no_allocation(ex);
+}
+
 // The same run from the scene file: its motions are Expressions evaluated on Jet (recursion over
 // the parsed tree, no allocation).
 TEST(NoAllocation, Rrr3SceneSample) {
