@@ -78,6 +78,9 @@ struct ForwardOptions {
   double step = 1e-3;  // fixed step (rk4, baumgarte); shortened so that steps end on output times
   double baumgarte_alpha = 20.0;  // 1/s, velocity-constraint feedback of the baumgarte mode
   double penalty = 0;             // augmented Lagrangian alpha (0: chosen from the mass scale)
+  // cvode_bdf's Newton matrix from the exact derivatives of the accelerations (mo2d/jacobian.hpp);
+  // false: CVODE's difference quotients of the right-hand side (for comparison)
+  bool exact_jacobian = true;
   // Budgets (mo2d/budget.hpp): accepted steps over the whole run (all integrators; a fixed-step
   // run needing more is refused before it starts) and wall-clock seconds (<= 0 or inf: none).
   // When one runs out, forward_dynamics throws an Error naming the time reached and the steps.

@@ -22,6 +22,7 @@ struct AccelerationJacobian {
   Eigen::MatrixXd da_dq0;   // n1 x n0: d a1 / d q0
   Eigen::MatrixXd da_dq1;   // n1 x n1: d a1 / d q1
   std::string approximate;  // empty when every entry is exact; else what was differenced, and why
+  bool singular = false;    // the constraint rows are dependent at the state: minimum-norm values
 };
 
 // The Jacobian of the accelerations at (t, q0, q1) with the efforts of the workspace's laws

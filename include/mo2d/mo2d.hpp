@@ -7,6 +7,7 @@
 #include "mo2d/error.hpp"
 #include "mo2d/forward.hpp"
 #include "mo2d/forward_data.hpp"
+#include "mo2d/jacobian.hpp"
 #include "mo2d/inverse.hpp"
 #include "mo2d/jet.hpp"
 #include "mo2d/kinematics.hpp"

@@ -9,6 +9,8 @@
 
 #include <Eigen/Cholesky>
 #include <algorithm>
+#include <cfloat>
+#include <cmath>
 #include <exception>
 #include <memory>
 #include <sstream>
@@ -17,6 +19,7 @@
 #include "forward/forward_run.hpp"
 #include "mo2d/dynamics.hpp"
 #include "mo2d/error.hpp"
+#include "mo2d/jacobian.hpp"
 #include "mo2d/kinematics.hpp"
 #include "run/run_budget.hpp"
 
@@ -33,6 +36,8 @@ struct CvodeUser {
   RunBudget* budget = nullptr;
   void* mem = nullptr;               // the CVODE solver (step counts for the budget)
   std::exception_ptr out_of_budget;  // thrown by the budget inside the right-hand side
+  AccelerationJacobian jac;          // the last Newton matrix's d a1 / d (q0, q1)
+  MatrixXd energy_rows;              // its energy rows: d rates / d (q0, q1), terms x (n0 + n1)
 };
 
 // The budget is checked at every right-hand side evaluation (a single output interval can take
@@ -52,14 +57,12 @@ bool budget_ok(CvodeUser* u) {
   return true;
 }
 
-int cv_rhs(realtype t, N_Vector y, N_Vector ydot, void* user) {
-  auto* u = static_cast<CvodeUser*>(user);
+// y' = (q1.head(n0), a1, energy rates) at (t, y) into out: 0, or 1 (recoverable: the message in
+// last_error).
+int evaluate_rhs(CvodeUser* u, double t, const double* yd, double* out) {
   const Model& m = *u->m;
-  const double* yd = N_VGetArrayPointer(y);
-  double* out = N_VGetArrayPointer(ydot);
   u->q0 = Eigen::Map<const VectorXd>(yd, m.n0);
   u->q1 = Eigen::Map<const VectorXd>(yd + m.n0, m.n1);
-  if (!budget_ok(u)) return -1;  // unrecoverable: the run stops
   try {
     u->d->accelerations(t, u->q0, u->q1, u->baumgarte);
   } catch (const Error& e) {
@@ -78,6 +81,69 @@ int cv_rhs(realtype t, N_Vector y, N_Vector ydot, void* user) {
           "the acceleration " + m.rate_labels[k] + ".dot is not finite at t = " + fmt(t) + " s";
       return 1;
     }
+  return 0;
+}
+
+int cv_rhs(realtype t, N_Vector y, N_Vector ydot, void* user) {
+  auto* u = static_cast<CvodeUser*>(user);
+  if (!budget_ok(u)) return -1;  // unrecoverable: the run stops
+  return evaluate_rhs(u, t, N_VGetArrayPointer(y), N_VGetArrayPointer(ydot));
+}
+
+// Forward difference quotients of the whole right-hand side (CVODE's own scheme, increments
+// sqrt(eps) max(|y_j|, atol)): the Newton matrix where the accelerations are regularized (next to
+// a singular configuration), so that it is the derivative of what is integrated there.
+int difference_quotients(CvodeUser* u, double t, N_Vector y, N_Vector fy, SUNMatrix J) {
+  const sunindextype n = N_VGetLength(y);
+  const double* yd = N_VGetArrayPointer(y);
+  const double* f0 = N_VGetArrayPointer(fy);
+  std::vector<double> yp(yd, yd + n), fp(n);
+  for (sunindextype j = 0; j < n; ++j) {
+    const double h = std::sqrt(DBL_EPSILON) * std::max(std::abs(yd[j]), u->d->o.atol);
+    yp[j] = yd[j] + h;
+    if (const int flag = evaluate_rhs(u, t, yp.data(), fp.data())) return flag;
+    yp[j] = yd[j];
+    double* col = SUNDenseMatrix_Column(J, j);
+    for (sunindextype i = 0; i < n; ++i) col[i] = (fp[i] - f0[i]) / h;
+  }
+  return 0;
+}
+
+// The Jacobian of y' = (q1.head(n0), a1(t, q0, q1), energy rates) for BDF's Newton matrix:
+//   [0, [I 0], 0;  da/dq0, da/dq1, 0;  0, 0, 0]
+// with da/dq0, da/dq1 from acceleration_jacobian and the energy rows from energy_rate_jacobian
+// (exact directional derivatives); where the evaluation is regularized (a singular configuration
+// near), difference quotients of what is integrated there.
+int cv_jac(realtype t, N_Vector y, N_Vector fy, SUNMatrix J, void* user, N_Vector /*tmp1*/,
+           N_Vector /*tmp2*/, N_Vector /*tmp3*/) {
+  auto* u = static_cast<CvodeUser*>(user);
+  const Model& m = *u->m;
+  const double* yd = N_VGetArrayPointer(y);
+  u->q0 = Eigen::Map<const VectorXd>(yd, m.n0);
+  u->q1 = Eigen::Map<const VectorXd>(yd + m.n0, m.n1);
+  const long regularized = u->d->stats.regularized_evaluations;
+  try {
+    acceleration_jacobian(*u->d, t, u->q0, u->q1, u->jac);
+    if (u->jac.singular || u->d->stats.regularized_evaluations > regularized)
+      return difference_quotients(u, t, y, fy, J);
+    energy_rate_jacobian(*u->d, t, u->q0, u->q1, u->jac, u->terms, u->energy_rows);
+  } catch (const Error& e) {
+    u->last_error = e.what();
+    return 1;  // recoverable: CVODE retries with a smaller step
+  }
+  if (!u->jac.da_dq0.allFinite() || !u->jac.da_dq1.allFinite()) {
+    u->last_error = "the Jacobian of the accelerations is not finite at t = " + fmt(t) + " s";
+    return 1;
+  }
+  SUNMatZero(J);
+  for (int k = 0; k < m.n0; ++k) SM_ELEMENT_D(J, k, m.n0 + k) = 1.0;
+  for (int j = 0; j < m.n0; ++j)
+    for (int i = 0; i < m.n1; ++i) SM_ELEMENT_D(J, m.n0 + i, j) = u->jac.da_dq0(i, j);
+  for (int j = 0; j < m.n1; ++j)
+    for (int i = 0; i < m.n1; ++i) SM_ELEMENT_D(J, m.n0 + i, m.n0 + j) = u->jac.da_dq1(i, j);
+  for (int j = 0; j < m.n0 + m.n1; ++j)
+    for (Eigen::Index r = 0; r < u->energy_rows.rows(); ++r)
+      SM_ELEMENT_D(J, m.n0 + m.n1 + r, j) = u->energy_rows(r, j);
   return 0;
 }
 
@@ -185,7 +251,8 @@ void run_cvode(const Model& m, ForwardData& d, const State& s0, const ForwardOpt
   RunBudget budget(forward_budget(m, o,
                                   bdf ? "loosen rtol/atol, or try dopri5 (non-stiff mechanisms)"
                                       : "loosen rtol/atol, or try cvode_bdf (stiff mechanisms)"));
-  CvodeUser user{&m, &d, VectorXd(m.n0), VectorXd(m.n1), terms, false, {}, &budget, mem, nullptr};
+  CvodeUser user{&m, &d, VectorXd(m.n0), VectorXd(m.n1), terms, false, {}, &budget, mem, nullptr,
+                 {}, {}};
   check_flag(CVodeInit(mem, cv_rhs, o.t0, y), "CVodeInit", o.t0);
   check_flag(CVodeSetUserData(mem, &user), "CVodeSetUserData", o.t0);
   check_flag(CVodeSetErrHandlerFn(mem, cv_error_handler, &d.stats), "CVodeSetErrHandlerFn", o.t0);
@@ -206,6 +273,9 @@ void run_cvode(const Model& m, ForwardData& d, const State& s0, const ForwardOpt
     LS = SUNLinSol_Dense(y, A, ctx);
     LS_guard.reset(LS);
     check_flag(CVodeSetLinearSolver(mem, LS, A), "CVodeSetLinearSolver", o.t0);
+    // joint friction (iterated with the reactions) is not differentiated: difference quotients
+    if (o.exact_jacobian && m.frictions.empty())
+      check_flag(CVodeSetJacFn(mem, cv_jac), "CVodeSetJacFn", o.t0);
     check_flag(CVodeSetProjFn(mem, cv_proj), "CVodeSetProjFn", o.t0);
   } else {
     NLS = SUNNonlinSol_FixedPoint(y, 0, ctx);

@@ -7,6 +7,7 @@
 
 #include "mo2d/forward.hpp"
 #include "mo2d/forward_data.hpp"
+#include "mo2d/jacobian.hpp"
 #include "run/format.hpp"
 #include "run/run_budget.hpp"
 
@@ -21,6 +22,12 @@ VectorXd regularized_normal_solve(const MatrixXd& J, const VectorXd& x, double e
 enum EnergyTerm { kInputWork, kLoadWork, kConstraintWork, kDissipated, kEnergyTerms };
 // Their rates (powers, W) at (t, q0, q1), right after d.accelerations(t, q0, q1, .) there.
 void energy_rates(ForwardData& d, double t, const VectorXd& q0, const VectorXd& q1, double* rates);
+
+// The rows of the energy terms `terms` (in order) of the run's Jacobian: d rate / d (q0, q1),
+// rows terms.size() x (n0 + n1), at the state of the last acceleration_jacobian(d, t, q0, q1, J).
+void energy_rate_jacobian(ForwardData& d, double t, const VectorXd& q0, const VectorXd& q1,
+                          const AccelerationJacobian& J, const std::vector<int>& terms,
+                          MatrixXd& rows);
 
 struct Recorder {
   const Model& m;

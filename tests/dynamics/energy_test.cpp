@@ -155,8 +155,13 @@ TEST(EnergyBalance, EngineBalancesForEveryIntegrator) {
     o.t1 = 0.2;  // five revolutions, two firings
     o.samples = 401;
     o.step = 2e-5;  // rk4, baumgarte: 157 rad/s and a pressure pulse of a few ms
+    // BDF's global error at the scene's rtol 1e-8 is of the bound's own order (measured: 4.3e-4 J
+    // with the exact Newton matrix, 3.5e-4 J with difference quotients, bound 4.1e-4 J): the
+    // bound is checked at a tenth of that tolerance, where the error is far below it
+    if (integ == Integrator::cvode_bdf) o.rtol = 1e-9;
     const Trajectory r = forward_dynamics(model, s0, o);
     std::printf("%s: balance error %.3g J\n", to_string(integ), energy_balance_error(r));
+
     const double scale = r.load_work.cwiseAbs().maxCoeff() + r.kinetic.maxCoeff();
     EXPECT_GT(r.load_work.cwiseAbs().maxCoeff(), 100.0) << to_string(integ);  // the gas force
     EXPECT_GT(r.dissipated[r.time.size() - 1], 1.0) << to_string(integ);      // the load
