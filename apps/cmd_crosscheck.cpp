@@ -182,7 +182,8 @@ Command add_crosscheck_command(CLI::App& app) {
       ->check(CLI::NonNegativeNumber);
   sub->add_option("--reference-set", o->reference_set,
                   "override a parameter in mo2d's model only (Box2D keeps the scene's value): "
-                  "shows which modelling errors the cross-check detects; repeatable");
+                  "shows which modelling errors the cross-check detects; repeatable")
+      ->check(name_equals_value());
   sub->add_flag("--strict", o->strict,
                 "kept for old scripts: a disagreement always exits with status 3");
   return {sub, [o] { return crosscheck(*o); }};

@@ -143,6 +143,13 @@ std::string with_unit(const std::string& label, const std::string& unit) {
 }
 
 int plot(const PlotCliOptions& o) {
+  std::filesystem::path out = o.out;
+  if (out.empty())
+    out = std::filesystem::path(o.csv).replace_filename(
+        std::filesystem::path(o.csv).stem().string() + "_plot.png");
+  const std::string ext = out.extension().string();
+  if (ext != ".png" && ext != ".svg" && ext != ".pdf")
+    throw UsageError("plot: -o " + out.string() + ": the plot is a .png, .svg or .pdf file");
   CsvData d = read_csv(o.csv);
   units_from_summary(o.csv, d);
   const std::string xname =
@@ -168,10 +175,6 @@ int plot(const PlotCliOptions& o) {
     for (std::size_t k = 0; k < o.columns.size(); ++k)
       p.series[k].label = with_unit(o.columns[k], d.units[column_of(o.columns[k], o.csv, d)]);
   p.legend = o.columns.size() > 1 || units.size() > 1;
-  std::filesystem::path out = o.out;
-  if (out.empty())
-    out = std::filesystem::path(o.csv).replace_filename(
-        std::filesystem::path(o.csv).stem().string() + "_plot.png");
   write_plot(p, out.string());
   std::printf("  wrote %s\n", out.string().c_str());
   return 0;

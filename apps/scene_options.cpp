@@ -69,22 +69,26 @@ void add_run_flags(CLI::App* app, SceneOptions& o, const RunFlag (&flags)[N]) {
 
 }  // namespace
 
+CLI::Validator name_equals_value() {
+  return CLI::Validator(
+      [](const std::string& s) {
+        try {
+          parse_override(s);
+          return std::string();
+        } catch (const Error& e) {
+          return std::string(e.what());
+        }
+      },
+      "name=value");
+}
+
 void add_scene_options(CLI::App* app, SceneOptions& o, bool with_out, RunFlags flags) {
   app->add_option("SCENE", o.scene, "scene file (YAML, see docs/scene-format.md)")->required();
   app->add_option("--set", o.set,
                   "override a parameter: --set name=value (value: an expression of the other "
                   "parameters); repeatable")
       ->allow_extra_args(false)  // one value per --set, so SCENE may follow
-      ->check(
-          [](const std::string& s) {
-            try {
-              parse_override(s);
-              return std::string();
-            } catch (const Error& e) {
-              return std::string(e.what());
-            }
-          },
-          "name=value");
+      ->check(name_equals_value());
   if (with_out)
     app->add_option("--out", o.out,
                     "output folder (created if needed); a run's files land together or not at "

@@ -38,6 +38,9 @@ void add_scene_options(CLI::App* app, SceneOptions& o, bool with_out,
 // ("--duration: run.duration: must be > 0 s") but with exit status 2.
 Scene load_scene_with_overrides(const SceneOptions& o);
 
+// CLI11 check of a --set / --reference-set value: name=value (parse_override), else a usage error.
+CLI::Validator name_equals_value();
+
 // A command-line usage error: main prints it and exits with status 2.
 struct UsageError : Error {
   using Error::Error;
