@@ -5,6 +5,11 @@
 // efforts, DIR/NAME_crosscheck.png. Exit status 3 when the engines disagree (the tolerances are
 // set so that a disagreement means a modelling error, docs/crosscheck.md); a step too coarse for
 // the motion or too few compared steps is an error (status 1), never a verdict.
+// With --forward: from the scene's consistent initial state, with no efforts (driven joints
+// free), mo2d (CVODE BDF, rtol 1e-10) and Box2D integrate over the run; centres of mass and body
+// angles are compared at the run's samples; writes DIR/NAME_crosscheck_forward.csv (t and the
+// worst body's errors); exit status 3 when an error exceeds --position-tolerance (relative to
+// the mechanism's size) or --angle-tolerance.
 #include <cstdio>
 #include <iostream>
 #include <sstream>
@@ -14,6 +19,7 @@
 #include "mo2d/mo2d.hpp"
 #include "mo2d/render.hpp"
 #include "scene_options.hpp"
+#include "table.hpp"
 
 namespace mo2d::cli {
 
@@ -26,6 +32,9 @@ struct CrosscheckCliOptions {
   double feedback_time = -1;                 // < 0: the library's default
   std::vector<std::string> reference_set{};  // name=value, mo2d's model only
   bool strict = false;
+  bool forward = false;
+  double position_tolerance = 1e-2;  // --forward: max |com error| / Model::scale
+  double angle_tolerance = 2e-2;     // --forward: rad
 };
 
 // mo2d (solid) and Box2D (dashed, next colour) efforts against time.
@@ -52,7 +61,66 @@ Plot overlay_plot(const CrosscheckReport& r) {
   return p;
 }
 
+// Box2D takes (t1 - t0) / step steps (counted in int by the cross-check): within the budget.
+void check_box2d_steps(const CrosscheckCliOptions& o, const Scene& scene) {
+  const double steps = scene.run.duration / o.step;
+  if (!(steps <= scene.run.max_steps)) {
+    std::ostringstream m;
+    m << "crosscheck: --step " << o.step << " s over " << scene.run.duration << " s needs " << steps
+      << " Box2D steps, more than max_steps = " << scene.run.max_steps
+      << " (run.max_steps, --max-steps): use a longer --step";
+    throw Error(m.str(), "step");
+  }
+}
+
+CrosscheckOptions check_options(const CrosscheckCliOptions& o) {
+  CrosscheckOptions check;
+  check.step = o.step;
+  check.zero_inertia_fraction = o.inertia_fraction;
+  if (o.feedback_time >= 0) check.feedback_time = o.feedback_time;
+  return check;
+}
+
+// The forward cross-check: the motion of both engines from the scene's initial state.
+int forward_check(const CrosscheckCliOptions& o) {
+  const Scene scene = load_scene_with_overrides(o.scene);
+  build_model_of(scene);  // checks the scene's labels, prints the sketch's warnings
+  check_box2d_steps(o, scene);
+  const Model model = build_scene_model(scene, {.reduction = Reduction::none});
+  const State initial = initial_state(scene, model);
+  const int samples = scene.run.samples > 0 ? scene.run.samples : 101;
+  const ForwardCrosscheck r = mo2d::crosscheck_forward(
+      model, initial, scene.run.t0 + scene.run.duration, check_options(o), samples);
+  const bool agree =
+      r.relative_position_error <= o.position_tolerance && r.max_angle_error <= o.angle_tolerance;
+  std::printf("mo2d forward cross-check against Box2D: %s\n", r.mechanism.c_str());
+  if (!scene.efforts.empty() || !scene.controllers.empty())
+    std::printf(
+        "  note: the scene's efforts and controllers are not applied (the driven joints "
+        "are free in both engines)\n");
+  std::printf("  step %.6g s, %d steps over [%g, %g] s, %d compared instants\n", r.step, r.steps,
+              initial.t, initial.t + r.steps * r.step, static_cast<int>(r.time.size()));
+  std::printf(
+      "  centre of mass error: max %.3e m (%.3e of the size, tolerance %.3g), final "
+      "%.3e m\n",
+      r.max_position_error, r.relative_position_error, o.position_tolerance,
+      r.final_position_error);
+  std::printf("  body angle error:     max %.3e rad (tolerance %.3g), final %.3e rad: %s\n",
+              r.max_angle_error, o.angle_tolerance, r.final_angle_error,
+              agree ? "AGREE" : "DISAGREE");
+  std::string csv = "t,position_error,angle_error\n";  // the worst body at each instant
+  for (Eigen::Index k = 0; k < r.time.size(); ++k)
+    csv += shortest(r.time[k]) + "," + shortest(r.position_error[k]) + "," +
+           shortest(r.angle_error[k]) + "\n";
+  OutputSet files;
+  files.add(output_path(o.scene, scene, "crosscheck_forward.csv"), csv);
+  files.commit();
+  for (const auto& path : files.paths()) std::printf("  wrote %s\n", path.c_str());
+  return agree ? 0 : 3;
+}
+
 int crosscheck(const CrosscheckCliOptions& o) {
+  if (o.forward) return forward_check(o);
   const Scene scene = load_scene_with_overrides(o.scene);
   const Model model = build_model_of(scene);  // checks the scene's labels
   if (static_cast<int>(scene.motion.size()) != model.dof)
@@ -60,21 +128,10 @@ int crosscheck(const CrosscheckCliOptions& o) {
                      "the cross-check drives the prescribed motion: the model has " +
                          std::to_string(model.dof) + " DOF and 'motion' prescribes " +
                          std::to_string(scene.motion.size()));
-  CrosscheckOptions check;
-  check.step = o.step;
-  check.zero_inertia_fraction = o.inertia_fraction;
-  if (o.feedback_time >= 0) check.feedback_time = o.feedback_time;
+  const CrosscheckOptions check = check_options(o);
   const InverseOptions run = inverse_options(scene);
   check_scene_options(scene, model, run);
-  // Box2D takes (t1 - t0) / step steps (counted in int by the cross-check): within the budget
-  const double steps = (run.t1 - run.t0) / o.step;
-  if (!(steps <= scene.run.max_steps)) {
-    std::ostringstream m;
-    m << "crosscheck: --step " << o.step << " s over " << run.t1 - run.t0 << " s needs " << steps
-      << " Box2D steps, more than max_steps = " << scene.run.max_steps
-      << " (run.max_steps, --max-steps): use a longer --step";
-    throw Error(m.str(), "step");
-  }
+  check_box2d_steps(o, scene);
   // mo2d's reference model: the scene's, or (--reference-set) the scene with some parameters
   // changed in mo2d only, to see which modelling errors the cross-check detects
   SceneOptions ref_options = o.scene;
@@ -103,7 +160,17 @@ Command add_crosscheck_command(CLI::App& app) {
   auto o = std::make_shared<CrosscheckCliOptions>();
   CLI::App* sub = app.add_subcommand(
       "crosscheck", "Rebuild the scene in Box2D and compare motor efforts and joint reactions");
-  add_scene_options(sub, o->scene, true);
+  add_scene_options(sub, o->scene, true, RunFlags::inverse);
+  sub->add_flag("--forward", o->forward,
+                "forward cross-check: the motion from the scene's initial state (no efforts) in "
+                "both engines, centres of mass and body angles compared");
+  sub->add_option("--position-tolerance", o->position_tolerance,
+                  "--forward: largest centre-of-mass error, relative to the mechanism's size "
+                  "(default 1e-2)")
+      ->check(CLI::PositiveNumber);
+  sub->add_option("--angle-tolerance", o->angle_tolerance,
+                  "--forward: largest body angle error in rad (default 2e-2)")
+      ->check(CLI::PositiveNumber);
   sub->add_option("--step", o->step, "Box2D time step in s (default 1/2000)")
       ->check(CLI::PositiveNumber);
   sub->add_option("--point-mass-inertia", o->inertia_fraction,
@@ -115,7 +182,8 @@ Command add_crosscheck_command(CLI::App& app) {
       ->check(CLI::NonNegativeNumber);
   sub->add_option("--reference-set", o->reference_set,
                   "override a parameter in mo2d's model only (Box2D keeps the scene's value): "
-                  "shows which modelling errors the cross-check detects; repeatable");
+                  "shows which modelling errors the cross-check detects; repeatable")
+      ->check(name_equals_value());
   sub->add_flag("--strict", o->strict,
                 "kept for old scripts: a disagreement always exits with status 3");
   return {sub, [o] { return crosscheck(*o); }};

@@ -10,6 +10,7 @@
 #include "mo2d/mo2d.hpp"
 #include "mo2d/output.hpp"
 #include "mo2d/render.hpp"
+#include "scene_options.hpp"
 #include "table.hpp"
 
 namespace mo2d::cli {
@@ -30,8 +31,8 @@ int demo(const DemoOptions& o) {
       {"pendulum", [] { return mechanisms::pendulum(); }}};
   auto it = table.find(o.mechanism);
   if (it == table.end())
-    throw Error("unknown mechanism '" + o.mechanism +
-                "' (expected whitworth, rrr3, slider_crank, fourbar or pendulum)");
+    throw UsageError("unknown mechanism '" + o.mechanism +
+                     "' (expected whitworth, rrr3, slider_crank, fourbar or pendulum)");
   const mechanisms::Example ex = it->second();
   const Model model = build_model(ex.system);
   const Trajectory r = inverse_dynamics(model, ex.motion, ex.run);

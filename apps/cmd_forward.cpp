@@ -1,5 +1,6 @@
-// mo2d forward SCENE [--set name=value]... [--out DIR]: forward dynamics of a scene from its
-// initial state; writes DIR/NAME_forward.csv and DIR/NAME_forward.json (both or neither).
+// mo2d forward SCENE [--set name=value]... [--out DIR] [--units-row] [run settings]: forward
+// dynamics of a scene from its initial state; writes DIR/NAME_forward.csv and
+// DIR/NAME_forward.json (both or neither).
 #include <cstdio>
 
 #include "command.hpp"
@@ -29,9 +30,12 @@ int forward(const SceneOptions& o) {
   print_tracking_table(tracking_errors(scene, model, r));
   // all outputs land together or not at all (mo2d/output.hpp)
   OutputSet out;
-  if (scene.run.csv) out.add(output_path(o, scene, "forward.csv"), trajectory_csv(r));
+  if (scene.run.csv)
+    out.add(output_path(o, scene, "forward.csv"),
+            trajectory_csv(
+                r, o.units_row ? trajectory_csv_units(model, r) : std::vector<std::string>{}));
   if (scene.run.json)
-    out.add(output_path(o, scene, "forward.json"), forward_summary(scene, model, r));
+    out.add(output_path(o, scene, "forward.json"), forward_summary(o, scene, model, r, run));
   out.commit();
   for (const auto& path : out.paths()) std::printf("  wrote %s\n", path.c_str());
   return 0;
@@ -43,7 +47,10 @@ Command add_forward_command(CLI::App& app) {
   auto o = std::make_shared<SceneOptions>();
   CLI::App* sub = app.add_subcommand(
       "forward", "Forward dynamics of a scene from its initial state under its loads and efforts");
-  add_scene_options(sub, *o, true);
+  add_scene_options(sub, *o, true, RunFlags::forward);
+  sub->add_flag("--units-row", o->units_row,
+                "write the unit of every column as a second header line of the CSV (the JSON "
+                "summary lists them either way)");
   return {sub, [o] { return forward(*o); }};
 }
 

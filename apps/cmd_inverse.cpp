@@ -1,5 +1,5 @@
-// mo2d inverse SCENE [--set name=value]... [--out DIR]: inverse dynamics of a scene; writes
-// DIR/NAME_inverse.csv and DIR/NAME_inverse.json (both or neither).
+// mo2d inverse SCENE [--set name=value]... [--out DIR] [--units-row] [run settings]: inverse
+// dynamics of a scene; writes DIR/NAME_inverse.csv and DIR/NAME_inverse.json (both or neither).
 #include <cstdio>
 
 #include "command.hpp"
@@ -31,9 +31,12 @@ int inverse(const SceneOptions& o) {
   print_inverse_table(model, r, run);
   // all outputs land together or not at all (mo2d/output.hpp)
   OutputSet out;
-  if (scene.run.csv) out.add(output_path(o, scene, "inverse.csv"), trajectory_csv(r));
+  if (scene.run.csv)
+    out.add(output_path(o, scene, "inverse.csv"),
+            trajectory_csv(
+                r, o.units_row ? trajectory_csv_units(model, r) : std::vector<std::string>{}));
   if (scene.run.json)
-    out.add(output_path(o, scene, "inverse.json"), inverse_summary(scene, model, r));
+    out.add(output_path(o, scene, "inverse.json"), inverse_summary(o, scene, model, r, run));
   out.commit();
   for (const auto& path : out.paths()) std::printf("  wrote %s\n", path.c_str());
   return 0;
@@ -45,7 +48,10 @@ Command add_inverse_command(CLI::App& app) {
   auto o = std::make_shared<SceneOptions>();
   CLI::App* sub = app.add_subcommand(
       "inverse", "Inverse dynamics of a scene: efforts and reactions for its prescribed motion");
-  add_scene_options(sub, *o, true);
+  add_scene_options(sub, *o, true, RunFlags::inverse);
+  sub->add_flag("--units-row", o->units_row,
+                "write the unit of every column as a second header line of the CSV (the JSON "
+                "summary lists them either way)");
   return {sub, [o] { return inverse(*o); }};
 }
 

@@ -86,7 +86,7 @@ Command add_render_command(CLI::App& app) {
   auto o = std::make_shared<RenderCliOptions>();
   CLI::App* sub = app.add_subcommand(
       "render", "Solve a scene and draw it: filmstrip, plots, optionally frames and a video");
-  add_scene_options(sub, o->scene, true);
+  add_scene_options(sub, o->scene, true, RunFlags::all);
   sub->add_option("--solve", o->solve, "inverse or forward (default: the scene's run.solve)")
       ->check(CLI::IsMember({"inverse", "forward"}));
   sub->add_flag("--frames", o->frames, "also write every K-th frame as DIR/NAME_0001.png ...");

@@ -1,7 +1,8 @@
 // mo2d command-line tool: `mo2d SUBCOMMAND ...` (mo2d --help). Each subcommand lives in its own
 // cmd_<name>.cpp and is registered by one line in the table below. Without arguments, `mo2d`
-// runs `mo2d demo` (as before the subcommands existed). Failures print one line
-// "mo2d: error: ..." on stderr and exit with status 1 (2 for a command-line usage error).
+// prints its help (`mo2d demo` runs the demo); `mo2d --version` prints the project's version.
+// Failures print one line "mo2d: error: ..." on stderr and exit with status 1, 2 for a
+// command-line usage error (a bad option or value, a --set that names no parameter).
 #include <CLI/CLI.hpp>
 #include <cstdio>
 #include <exception>
@@ -10,6 +11,7 @@
 #include "command.hpp"
 #include "mo2d/error.hpp"
 #include "mo2d/output.hpp"
+#include "scene_options.hpp"
 
 // Building the command table throws only on a programming error (CLI::ConstructionError, a name
 // registered twice), which should abort; every error of a run is caught below.
@@ -20,15 +22,23 @@ int main(int argc, char** argv) {  // NOLINT(bugprone-exception-escape)
   CLI::App app{"mo2d: dynamics of planar mechanisms (scene files: docs/scene-format.md)", "mo2d"};
   app.require_subcommand(0, 1);
   app.fallthrough(false);
+  app.set_version_flag("--version", "mo2d " MO2D_VERSION);
   const std::vector<Command> commands = {
       add_demo_command(app),    add_info_command(app),   add_inverse_command(app),
       add_forward_command(app), add_render_command(app), add_crosscheck_command(app),
+      add_plot_command(app),
   };
+  if (argc <= 1) {  // a bare mo2d: what it can do, nothing run or written
+    std::fputs(app.help().c_str(), stdout);
+    return 0;
+  }
   try {
     app.parse(argc, argv);
   } catch (const CLI::CallForHelp& e) {
     return app.exit(e);
   } catch (const CLI::CallForAllHelp& e) {
+    return app.exit(e);
+  } catch (const CLI::CallForVersion& e) {
     return app.exit(e);
   } catch (const CLI::ParseError& e) {
     std::fprintf(stderr, "mo2d: error: %s (see mo2d --help)\n", e.what());
@@ -37,7 +47,11 @@ int main(int argc, char** argv) {  // NOLINT(bugprone-exception-escape)
   try {
     for (const auto& c : commands)
       if (c.app->parsed()) return c.run();
-    return commands.front().run();     // no subcommand: the demo
+    std::fputs(app.help().c_str(), stdout);  // options without a subcommand
+    return 0;
+  } catch (const UsageError& e) {  // a value on the command line the scene refuses
+    std::fprintf(stderr, "mo2d: error: %s (see mo2d --help)\n", e.what());
+    return 2;
   } catch (const std::exception& e) {  // mo2d::Error, SceneError (file:line:col), file system
     std::fprintf(stderr, "mo2d: error: %s\n", e.what());
     return 1;

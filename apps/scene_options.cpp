@@ -17,51 +17,98 @@ double wall_seconds() {
 }
 }  // namespace
 
-void add_scene_options(CLI::App* app, SceneOptions& o, bool with_out) {
+namespace {
+
+struct RunFlag {
+  const char* key;
+  const char* help;
+};
+
+// The run settings a subcommand may take from the command line, with their help (the scene's
+// key, docs/scene-format.md#run).
+constexpr RunFlag kBudgetFlags[] = {
+    {"max_steps", "step budget of a forward run (default: the scene's run.max_steps, else 1e7)"},
+    {"max_seconds",
+     "wall-time budget of the run in s (default: the scene's run.max_seconds, else "
+     "600)"},
+    {"max_memory",
+     "refuse a mechanism whose dense matrices and results need more bytes "
+     "(default: the scene's run.max_memory, else 4e9)"},
+};
+constexpr RunFlag kTimeFlags[] = {
+    {"t0", "start time in s (run.t0)"},
+    {"duration", "s; the run ends at t0 + duration (run.duration)"},
+    {"samples", "equally spaced output times, both ends included (run.samples)"},
+};
+constexpr RunFlag kInverseFlags[] = {
+    {"tolerance", "inverse: position tolerance |psi|, relative to the model size (run.tolerance)"},
+};
+constexpr RunFlag kForwardFlags[] = {
+    {"integrator", "cvode_bdf, cvode_adams, rk4, dopri5 or baumgarte (run.integrator)"},
+    {"formulation", "augmented_lagrangian, lagrange or null_space (run.formulation)"},
+    {"rtol", "relative tolerance of cvode_bdf, cvode_adams and dopri5 (run.rtol)"},
+    {"atol", "absolute tolerance of cvode_bdf, cvode_adams and dopri5 (run.atol)"},
+    {"step", "s, fixed step of rk4 and baumgarte (run.step)"},
+};
+
+template <std::size_t N>
+void add_run_flags(CLI::App* app, SceneOptions& o, const RunFlag (&flags)[N]) {
+  for (const RunFlag& f : flags) {
+    const std::string key = f.key;
+    app->add_option_function<std::string>(
+           run_override_flag(key),
+           [&o, key](const std::string& v) {
+             o.run.push_back({key, v});
+           },
+           std::string(f.help) +
+               "; replaces the scene's value (a number may be an expression of "
+               "the parameters)")
+        ->type_name(key == "integrator" || key == "formulation" ? "NAME" : "VALUE");
+  }
+}
+
+}  // namespace
+
+CLI::Validator name_equals_value() {
+  return CLI::Validator(
+      [](const std::string& s) {
+        try {
+          parse_override(s);
+          return std::string();
+        } catch (const Error& e) {
+          return std::string(e.what());
+        }
+      },
+      "name=value");
+}
+
+void add_scene_options(CLI::App* app, SceneOptions& o, bool with_out, RunFlags flags) {
   app->add_option("SCENE", o.scene, "scene file (YAML, see docs/scene-format.md)")->required();
   app->add_option("--set", o.set,
                   "override a parameter: --set name=value (value: an expression of the other "
                   "parameters); repeatable")
-      ->allow_extra_args(false);  // one value per --set, so SCENE may follow
+      ->allow_extra_args(false)  // one value per --set, so SCENE may follow
+      ->check(name_equals_value());
   if (with_out)
     app->add_option("--out", o.out,
                     "output folder (created if needed); a run's files land together or not at "
                     "all (docs/scene-format.md)")
         ->capture_default_str();
-  app->add_option("--max-steps", o.max_steps,
-                  "step budget of a forward run (default: the scene's run.max_steps, else 1e7)")
-      ->check(CLI::PositiveNumber);
-  app->add_option("--max-seconds", o.max_seconds,
-                  "wall-time budget of the run in s (default: the scene's run.max_seconds, else "
-                  "600)")
-      ->check(CLI::PositiveNumber);
-  app->add_option("--max-memory", o.max_memory,
-                  "refuse a mechanism whose dense matrices and results need more bytes (default: "
-                  "the scene's run.max_memory, else 4e9)")
-      ->check(CLI::PositiveNumber);
+  if (flags != RunFlags::budgets) add_run_flags(app, o, kTimeFlags);
+  if (flags == RunFlags::inverse || flags == RunFlags::all) add_run_flags(app, o, kInverseFlags);
+  if (flags == RunFlags::forward || flags == RunFlags::all) add_run_flags(app, o, kForwardFlags);
+  add_run_flags(app, o, kBudgetFlags);
 }
 
 Scene load_scene_with_overrides(const SceneOptions& o) {
   std::vector<ParameterOverride> overrides;
   for (const auto& s : o.set) overrides.push_back(parse_override(s));
-  Scene scene = load_scene(o.scene, overrides);
-  // a budget given on the command line replaces the scene's (whose line no longer applies)
-  auto overridden = [&](const char* key) {
-    std::erase_if(scene.elements, [&](const auto& e) { return e.first == key; });
-  };
-  if (o.max_steps) {
-    scene.run.max_steps = *o.max_steps;
-    overridden("run.max_steps");
+  try {
+    return load_scene(o.scene, overrides, o.run);
+  } catch (const SceneError& e) {  // at "--set" or "--duration": the command line's
+    if (e.where().file.starts_with("--") && e.where().line == 0) throw UsageError(e.what());
+    throw;
   }
-  if (o.max_seconds) {
-    scene.run.max_seconds = *o.max_seconds;
-    overridden("run.max_seconds");
-  }
-  if (o.max_memory) {
-    scene.run.max_memory = *o.max_memory;
-    overridden("run.max_memory");
-  }
-  return scene;
 }
 
 Model build_model_of(const Scene& s) {

@@ -15,15 +15,36 @@ struct SceneOptions {
   std::string scene{};
   std::vector<std::string> set{};  // name=value
   std::string out = "out";
-  // budgets: override the scene's run.max_steps, run.max_seconds, run.max_memory
-  std::optional<int> max_steps{};
-  std::optional<double> max_seconds{}, max_memory{};
+  // run settings given on the command line (--duration 2 -> {"duration", "2"}), applied on top of
+  // the scene's run: block (RunOverride, mo2d/scene.hpp), in the order given
+  std::vector<RunOverride> run{};
+  bool units_row = false;  // inverse, forward: --units-row
 };
 
-// SCENE positional (required), --set and the budgets (--max-steps, --max-seconds, --max-memory);
-// with_out: --out DIR too.
-void add_scene_options(CLI::App* app, SceneOptions& o, bool with_out);
+// Which run settings a subcommand lets the command line override (--KEY for each run key).
+enum class RunFlags {
+  budgets,  // --max-steps, --max-seconds, --max-memory
+  inverse,  // + --t0, --duration, --samples, --tolerance
+  forward,  // + --t0, --duration, --samples, --integrator, --formulation, --rtol, --atol, --step
+  all,      // both
+};
+
+// SCENE positional (required), --set and the run settings of `flags`; with_out: --out DIR too.
+// A --set without '=' is a usage error (exit status 2).
+void add_scene_options(CLI::App* app, SceneOptions& o, bool with_out,
+                       RunFlags flags = RunFlags::budgets);
+// The scene with the --set and run overrides. A bad value on the command line (an unknown
+// parameter, --duration -1) is a UsageError, reported like the scene's own errors
+// ("--duration: run.duration: must be > 0 s") but with exit status 2.
 Scene load_scene_with_overrides(const SceneOptions& o);
+
+// CLI11 check of a --set / --reference-set value: name=value (parse_override), else a usage error.
+CLI::Validator name_equals_value();
+
+// A command-line usage error: main prints it and exits with status 2.
+struct UsageError : Error {
+  using Error::Error;
+};
 // build_scene_model with the scene's memory limit (run.max_memory, --max-memory).
 Model build_model_of(const Scene& s);
 // OUT/<scene name>_<suffix> (the folder is created when the run's outputs are added to an

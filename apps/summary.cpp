@@ -25,23 +25,50 @@ json peaks(const std::vector<std::string>& labels, const Eigen::MatrixXd& values
   return out;
 }
 
-json header(const Scene& s, const Model& m, const char* solve, const Eigen::VectorXd& time) {
+json header(const SceneOptions& o, const Scene& s, const Model& m, const char* solve,
+            const Trajectory& r) {
   json params = json::object();
   for (const auto& [name, value] : s.parameters) params[name] = value;
-  return {{"scene", s.file},
+  json set = json::object(), run = json::object();  // as given on the command line
+  for (const auto& text : o.set) {
+    const ParameterOverride p = parse_override(text);
+    set[p.name] = p.value;
+  }
+  for (const RunOverride& v : o.run) run[v.key] = v.value;
+  const Eigen::VectorXd& time = r.time;
+  return {{"mo2d_version", MO2D_VERSION},
+          {"scene", s.file},
           {"name", s.name},
           {"solve", solve},
           {"model", {{"n0", m.n0}, {"n1", m.n1}, {"dof", m.dof}, {"bodies", m.bodies.size()}}},
           {"parameters", params},
+          {"overrides", {{"set", set}, {"run", run}}},
           {"samples", time.size()},
           {"t0", time.size() ? time[0] : 0.0},
           {"t1", time.size() ? time[time.size() - 1] : 0.0}};
 }
 
+// Every CSV column with its unit ("" where the model cannot say, mo2d/csv.hpp).
+json columns(const Model& m, const Trajectory& r) {
+  const std::vector<std::string> labels = trajectory_csv_labels(r);
+  const std::vector<std::string> units = trajectory_csv_units(m, r);
+  json out = json::object();
+  for (std::size_t k = 0; k < labels.size(); ++k) out[labels[k]] = units[k];
+  return out;
+}
+
 }  // namespace
 
-std::string inverse_summary(const Scene& s, const Model& m, const Trajectory& r) {
-  json j = header(s, m, "inverse", r.time);
+std::string inverse_summary(const SceneOptions& o, const Scene& s, const Model& m,
+                            const Trajectory& r, const InverseOptions& run) {
+  json j = header(o, s, m, "inverse", r);
+  j["run"] = {{"t0", run.t0},
+              {"duration", s.run.duration},
+              {"samples", run.samples},
+              {"tolerance", run.position_tolerance},
+              {"max_seconds", run.max_seconds},
+              {"max_memory", run.max_memory}};
+  j["columns"] = columns(m, r);
   j["efforts"] = peaks(r.input_labels, r.efforts, r.time);
   j["reactions"] = peaks(r.reaction_labels, r.reactions, r.time);
   const bool any = r.time.size() > 0;
@@ -53,8 +80,21 @@ std::string inverse_summary(const Scene& s, const Model& m, const Trajectory& r)
   return j.dump(2) + "\n";
 }
 
-std::string forward_summary(const Scene& s, const Model& m, const Trajectory& r) {
-  json j = header(s, m, "forward", r.time);
+std::string forward_summary(const SceneOptions& o, const Scene& s, const Model& m,
+                            const Trajectory& r, const ForwardOptions& run) {
+  json j = header(o, s, m, "forward", r);
+  j["run"] = {{"t0", run.t0},
+              {"duration", s.run.duration},
+              {"samples", run.samples},
+              {"integrator", to_string(run.integrator)},
+              {"formulation", to_string(run.formulation)},
+              {"rtol", run.rtol},
+              {"atol", run.atol},
+              {"step", run.step},
+              {"max_steps", run.max_steps},
+              {"max_seconds", run.max_seconds},
+              {"max_memory", run.max_memory}};
+  j["columns"] = columns(m, r);
   j["efforts"] = peaks(r.input_labels, r.efforts, r.time);
   j["reactions"] = peaks(r.reaction_labels, r.reactions, r.time);
   const bool any = r.time.size() > 0;

@@ -1,14 +1,18 @@
 #pragma once
 // The JSON summary of a run (peaks of the efforts with their times, max residuals, energy error,
-// CPU time), written next to the CSV.
+// CPU time), written next to the CSV: also mo2d's version, the run settings used with the ones
+// the command line overrode, and every CSV column with its unit (trajectory_csv_units).
 #include <string>
 
 #include "mo2d/mo2d.hpp"
 #include "mo2d/scene.hpp"
+#include "scene_options.hpp"
 
 namespace mo2d::cli {
 
-std::string inverse_summary(const Scene& s, const Model& m, const Trajectory& r);
-std::string forward_summary(const Scene& s, const Model& m, const Trajectory& r);
+std::string inverse_summary(const SceneOptions& o, const Scene& s, const Model& m,
+                            const Trajectory& r, const InverseOptions& run);
+std::string forward_summary(const SceneOptions& o, const Scene& s, const Model& m,
+                            const Trajectory& r, const ForwardOptions& run);
 
 }  // namespace mo2d::cli

@@ -1,10 +1,17 @@
 // Short result tables on stdout.
 #include "table.hpp"
 
+#include <charconv>
 #include <cmath>
 #include <cstdio>
 
 namespace mo2d::cli {
+
+std::string shortest(double v) {
+  char buf[32];
+  const auto [end, ec] = std::to_chars(buf, buf + sizeof buf, v);
+  return {buf, end};
+}
 
 void print_inverse_table(const Model& model, const Trajectory& r, const InverseOptions& run) {
   std::printf(

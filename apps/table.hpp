@@ -1,5 +1,6 @@
 #pragma once
 // The short tables the subcommands print after a run.
+#include <string>
 #include <vector>
 
 #include "mo2d/mo2d.hpp"
@@ -14,6 +15,9 @@ void print_forward_table(const Model& model, const Trajectory& r, const ForwardO
 
 // The tracking error of each controller (input, coordinate, max |x - r| with its time, final).
 void print_tracking_table(const std::vector<TrackingError>& tracking);
+
+// The shortest text that reads back to the same double (std::to_chars), as in mo2d's CSV files.
+std::string shortest(double v);
 
 // max |E(t) - E(t0) - W_inputs(t) + D(t)| with E = kinetic + potential (J).
 double energy_error(const Trajectory& r);

@@ -1,4 +1,5 @@
 // Table and CSV of a cross-check report.
+#include <charconv>
 #include <cstdio>
 #include <ostream>
 #include <sstream>
@@ -43,21 +44,33 @@ void print_crosscheck_table(std::ostream& out, const CrosscheckReport& r) {
 }
 
 std::string crosscheck_csv(const CrosscheckReport& r) {
-  std::ostringstream s;
-  s.precision(10);
-  s << "t";
-  for (const std::string& l : r.effort_labels) s << ",mo2d." << l << ",box2d." << l;
-  for (const std::string& l : r.reaction_labels) s << ",mo2d." << l << ",box2d." << l;
-  s << "\n";
+  std::string s = "t";
+  for (const std::string& l : r.effort_labels) s += ",mo2d." + l + ",box2d." + l;
+  for (const std::string& l : r.reaction_labels) s += ",mo2d." + l + ",box2d." + l;
+  s += "\n";
+  // the shortest text that reads back to the same double (as mo2d's own CSV, mo2d/csv.hpp)
+  auto put = [&s](double v) {
+    char buf[32];
+    const auto [end, ec] = std::to_chars(buf, buf + sizeof buf, v);
+    s.append(buf, end);
+  };
   for (Eigen::Index k = 0; k < r.time.size(); ++k) {
-    s << r.time[k];
-    for (Eigen::Index c = 0; c < r.mo2d_efforts.cols(); ++c)
-      s << "," << r.mo2d_efforts(k, c) << "," << r.box2d_efforts(k, c);
-    for (Eigen::Index c = 0; c < r.mo2d_reactions.cols(); ++c)
-      s << "," << r.mo2d_reactions(k, c) << "," << r.box2d_reactions(k, c);
-    s << "\n";
+    put(r.time[k]);
+    for (Eigen::Index c = 0; c < r.mo2d_efforts.cols(); ++c) {
+      s += ',';
+      put(r.mo2d_efforts(k, c));
+      s += ',';
+      put(r.box2d_efforts(k, c));
+    }
+    for (Eigen::Index c = 0; c < r.mo2d_reactions.cols(); ++c) {
+      s += ',';
+      put(r.mo2d_reactions(k, c));
+      s += ',';
+      put(r.box2d_reactions(k, c));
+    }
+    s += "\n";
   }
-  return s.str();
+  return s;
 }
 
 void write_crosscheck_csv(const CrosscheckReport& r, const std::string& path) {

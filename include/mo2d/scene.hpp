@@ -111,10 +111,27 @@ struct ParameterOverride {
 };
 ParameterOverride parse_override(std::string_view name_equals_value);  // throws Error
 
+// A run setting given on the command line: `key` a key of the scene's `run:` block that a run
+// may override (kRunOverrideKeys), `value` its text as the scene would write it (a number may be
+// an expression of the parameters). Applied on top of the scene's `run:` block with the same
+// checks; a refusal is a SceneError at Location{"--KEY"} (the key with '-' for '_', as the mo2d
+// flag: "--max-steps: run.max_steps: must be >= 1"), and so are the later refusals of
+// check_scene_options for that key.
+struct RunOverride {
+  std::string key{};
+  std::string value{};
+};
+inline constexpr const char* kRunOverrideKeys[] = {
+    "t0",   "duration", "samples", "tolerance", "integrator",  "formulation",
+    "rtol", "atol",     "step",    "max_steps", "max_seconds", "max_memory"};
+std::string run_override_flag(const std::string& key);  // "max_steps" -> "--max-steps"
+
 // Read a scene file / text. Throws SceneError (file:line:column) on any problem.
-Scene load_scene(const std::string& path, std::span<const ParameterOverride> overrides = {});
+Scene load_scene(const std::string& path, std::span<const ParameterOverride> overrides = {},
+                 std::span<const RunOverride> run_overrides = {});
 Scene parse_scene(std::string_view yaml, const std::string& file_name = "<scene>",
-                  std::span<const ParameterOverride> overrides = {});
+                  std::span<const ParameterOverride> overrides = {},
+                  std::span<const RunOverride> run_overrides = {});
 
 // build_model() plus the checks that need the model: the labels the scene uses exist (else a
 // SceneError at their line, with a suggestion); a build error is reported against the file.

@@ -1,6 +1,7 @@
-// CSV writing (labels in the header, 17 significant digits, atomic replace).
+// CSV writing (labels in the header, numbers in shortest round-trip form, atomic replace).
 #include "mo2d/csv.hpp"
 
+#include <charconv>
 #include <cmath>
 #include <functional>
 #include <sstream>
@@ -28,6 +29,13 @@ std::vector<std::string> common_labels(const Trajectory& r) {
   return l;
 }
 
+// The shortest text that reads back (strtod) to the same double.
+void put_number(std::ostringstream& s, double v) {
+  char buf[32];
+  const auto [end, ec] = std::to_chars(buf, buf + sizeof buf, v);
+  s.write(buf, end - buf);
+}
+
 // One CSV row; a non-finite value is refused (never written as nan or inf).
 struct Row {
   std::ostringstream& s;
@@ -41,7 +49,8 @@ struct Row {
         << " s: refusing to write it";
       throw Error(m.str(), labels[col], t);
     }
-    s << (col++ ? "," : "") << v;
+    if (col++) s << ',';
+    put_number(s, v);
   }
   void put_row(const MatrixXd& x, int k) {
     for (int j = 0; j < x.cols(); ++j) put(x(k, j));
@@ -57,12 +66,16 @@ void common_row(Row& row, const Trajectory& r, int k) {
   row.put_row(r.reactions, k);
 }
 
-std::string csv_text(const std::vector<std::string>& labels, int rows,
-                     const std::function<void(Row&, int)>& fill, const VectorXd& time) {
+std::string csv_text(const std::vector<std::string>& labels, std::span<const std::string> units,
+                     int rows, const std::function<void(Row&, int)>& fill, const VectorXd& time) {
+  if (!units.empty() && units.size() != labels.size())
+    throw Error("CSV: " + std::to_string(units.size()) + " units for " +
+                std::to_string(labels.size()) + " columns");
   std::ostringstream s;
-  s.precision(17);
   for (std::size_t j = 0; j < labels.size(); ++j) s << (j ? "," : "") << labels[j];
   s << "\n";
+  for (std::size_t j = 0; j < units.size(); ++j) s << (j ? "," : "") << units[j];
+  if (!units.empty()) s << "\n";
   for (int k = 0; k < rows; ++k) {
     Row row{s, labels, time[k]};
     fill(row, k);
@@ -73,7 +86,7 @@ std::string csv_text(const std::vector<std::string>& labels, int rows,
 
 }  // namespace
 
-std::string trajectory_csv(const Trajectory& r) {
+std::vector<std::string> trajectory_csv_labels(const Trajectory& r) {
   std::vector<std::string> labels = common_labels(r);
   if (r.has_energies())
     for (const char* l : {"energy.kinetic", "energy.potential", "work.inputs", "energy.dissipated",
@@ -81,8 +94,12 @@ std::string trajectory_csv(const Trajectory& r) {
       labels.push_back(l);
   labels.insert(labels.end(), r.residual_labels.begin(), r.residual_labels.end());
   labels.insert(labels.end(), r.output_labels.begin(), r.output_labels.end());
+  return labels;
+}
+
+std::string trajectory_csv(const Trajectory& r, std::span<const std::string> units) {
   return csv_text(
-      labels, static_cast<int>(r.time.size()),
+      trajectory_csv_labels(r), units, static_cast<int>(r.time.size()),
       [&](Row& row, int k) {
         common_row(row, r, k);
         if (r.has_energies())

@@ -356,11 +356,36 @@ void read_run(const Reader& r, const YAML::Node& node, RunSettings& run,
   }
 }
 
+// A run setting from the command line, read by read_run on top of the scene's: its errors (and
+// those check_scene_options finds later for that key) are reported at "--KEY".
+void apply_run_override(const Reader& r, const RunOverride& o, Scene& scene) {
+  const std::string flag = run_override_flag(o.key);
+  const std::vector<std::string> keys(std::begin(kRunOverrideKeys), std::end(kRunOverrideKeys));
+  if (std::find(keys.begin(), keys.end(), o.key) == keys.end())
+    throw SceneError(
+        Location{flag, 0, 0},
+        "'" + o.key + "' is not a run setting a run can override" + did_you_mean(o.key, keys));
+  Reader at_flag = r;
+  at_flag.file = flag;
+  at_flag.source = {};
+  YAML::Node node(YAML::NodeType::Map);
+  node[o.key] = o.value;
+  std::erase_if(scene.elements, [&](const auto& e) { return e.first == "run." + o.key; });
+  read_run(at_flag, node, scene.run, scene.elements);
+}
+
 }  // namespace
 }  // namespace scene_detail
 
+std::string run_override_flag(const std::string& key) {
+  std::string flag = "--" + key;
+  std::replace(flag.begin(), flag.end(), '_', '-');
+  return flag;
+}
+
 Scene parse_scene(std::string_view yaml, const std::string& file_name,
-                  std::span<const ParameterOverride> overrides) {
+                  std::span<const ParameterOverride> overrides,
+                  std::span<const RunOverride> run_overrides) {
   using namespace scene_detail;
   Reader r;
   r.file = file_name;
@@ -397,6 +422,7 @@ Scene parse_scene(std::string_view yaml, const std::string& file_name,
     scene.law_labels.insert(scene.law_labels.end(), info.law_labels.begin(), info.law_labels.end());
     scene.expression_labels = std::move(info.labels);
     read_run(r, doc["run"], scene.run, scene.elements);
+    for (const RunOverride& o : run_overrides) apply_run_override(r, o, scene);
   } catch (const YAML::DeepRecursion& e) {  // yaml-cpp's depth guard (its message: "bad file")
     throw SceneError(Location{file_name, e.mark.line + 1, e.mark.column + 1},
                      "YAML: nested too deeply (" + std::to_string(e.depth()) + " levels)");
@@ -408,12 +434,13 @@ Scene parse_scene(std::string_view yaml, const std::string& file_name,
   return scene;
 }
 
-Scene load_scene(const std::string& path, std::span<const ParameterOverride> overrides) {
+Scene load_scene(const std::string& path, std::span<const ParameterOverride> overrides,
+                 std::span<const RunOverride> run_overrides) {
   std::ifstream in(path, std::ios::binary);
   if (!in) throw SceneError(Location{path, 0, 0}, "cannot open the scene file");
   std::ostringstream text;
   text << in.rdbuf();
-  return parse_scene(text.str(), path, overrides);
+  return parse_scene(text.str(), path, overrides, run_overrides);
 }
 
 }  // namespace mo2d

@@ -1,0 +1,112 @@
+// Run settings from the command line (RunOverride, mo2d/scene.hpp): applied on top of the scene's
+// run: block with the same checks, refusals reported at the flag that gave them.
+#include <gtest/gtest.h>
+
+#include <string>
+#include <vector>
+
+#include "mo2d/scene.hpp"
+
+namespace mo2d {
+namespace {
+
+const std::string kScene = R"yaml(name: p
+parameters:
+  T: 2.0
+ground:
+  O: [0, 0]
+bodies:
+  link:
+    nodes: {O: [0, 0], P: [1, 0]}
+    mass: 1
+    inertia: 0.1
+joints:
+  pivot: {type: revolute, node_a: ground.O, node_b: link.O, actuated: true}
+coordinates:
+  link.angle: {rate: {link.w: 1}}
+loads:
+  gravity: [0, -9.81]
+motion:
+  link.angle: sin(t)
+initial:
+  velocities: {link.w: 0}
+run:
+  duration: 3
+  samples: 31
+  integrator: rk4
+  step: 0.01
+)yaml";
+
+Scene with(std::vector<RunOverride> run) {
+  return parse_scene(kScene, "p.yaml", {}, run);
+}
+
+std::string error_of(std::vector<RunOverride> run) {
+  try {
+    with(std::move(run));
+  } catch (const SceneError& e) {
+    return e.what();
+  }
+  return "no error";
+}
+
+TEST(RunOverride, ReplacesTheScenesSettings) {
+  const Scene s = with({{"duration", "2 * T"},
+                        {"samples", "5"},
+                        {"integrator", "dopri5"},
+                        {"rtol", "1e-6"},
+                        {"max_steps", "100"}});
+  EXPECT_EQ(s.run.duration, 4.0);  // an expression of the parameters
+  EXPECT_EQ(s.run.samples, 5);
+  EXPECT_EQ(s.run.integrator, Integrator::dopri5);
+  EXPECT_EQ(s.run.rtol, 1e-6);
+  EXPECT_EQ(s.run.max_steps, 100);
+  EXPECT_EQ(s.run.step, 0.01);  // not overridden: the scene's
+  const Scene plain = with({});
+  EXPECT_EQ(plain.run.duration, 3.0);
+  EXPECT_EQ(plain.run.integrator, Integrator::rk4);
+}
+
+TEST(RunOverride, BadValuesAreRefusedAtTheFlag) {
+  EXPECT_EQ(error_of({{"duration", "-1"}}), "--duration: run.duration: must be > 0 s");
+  EXPECT_EQ(error_of({{"samples", "1"}}), "--samples: run.samples: must be >= 2");
+  EXPECT_EQ(error_of({{"samples", "2.5"}}), "--samples: run.samples: expected an integer");
+  EXPECT_EQ(error_of({{"max_steps", "0"}}), "--max-steps: run.max_steps: must be >= 1");
+  EXPECT_EQ(error_of({{"rtol", "0"}}), "--rtol: run.rtol: must be > 0");
+  EXPECT_EQ(error_of({{"integrator", "rk5"}}),
+            "--integrator: run.integrator: unknown value 'rk5' (did you mean 'rk4'?); expected "
+            "one of: cvode_bdf, cvode_adams, rk4, dopri5, baumgarte");
+  EXPECT_NE(error_of({{"duration", "2 * TT"}})
+                .find("--duration: run.duration: in expression "
+                      "'2 * TT': undefined name 'TT'"),
+            std::string::npos)
+      << error_of({{"duration", "2 * TT"}});
+  EXPECT_EQ(error_of({{"solve", "forward"}}).substr(0, 9), "--solve: ");
+  EXPECT_NE(error_of({{"duratoin", "1"}}).find("did you mean 'duration'"), std::string::npos);
+}
+
+TEST(RunOverride, LaterChecksNameTheFlag) {
+  // a fixed step that needs more steps than the budget: refused by check_scene_options, at the
+  // flag that set it rather than at the scene's run.step line
+  const Scene s = with({{"step", "1e-9"}});
+  const Model m = build_scene_model(s);
+  try {
+    check_scene_options(s, m, forward_options(s, m));
+    FAIL() << "expected a SceneError";
+  } catch (const SceneError& e) {
+    EXPECT_EQ(e.where().file, "--step") << e.what();
+    EXPECT_EQ(e.where().line, 0);
+  }
+  const Scene from_file = parse_scene(
+      std::string(kScene).replace(kScene.find("step: 0.01"), 10, "step: 1e-9"), "p.yaml");
+  try {
+    check_scene_options(from_file, m, forward_options(from_file, m));
+    FAIL() << "expected a SceneError";
+  } catch (const SceneError& e) {
+    EXPECT_EQ(e.where().file, "p.yaml");
+    EXPECT_GT(e.where().line, 0);
+  }
+}
+
+}  // namespace
+}  // namespace mo2d
