@@ -21,8 +21,9 @@ int main(int argc, char** argv) {  // NOLINT(bugprone-exception-escape)
   app.require_subcommand(0, 1);
   app.fallthrough(false);
   const std::vector<Command> commands = {
-      add_demo_command(app),    add_info_command(app),   add_inverse_command(app),
-      add_forward_command(app), add_render_command(app), add_crosscheck_command(app),
+      add_demo_command(app),    add_info_command(app),      add_inverse_command(app),
+      add_forward_command(app), add_render_command(app),    add_crosscheck_command(app),
+      add_modes_command(app),   add_linearize_command(app),  // cmd_modes.cpp
   };
   try {
     app.parse(argc, argv);
