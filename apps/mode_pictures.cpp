@@ -3,17 +3,39 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <numbers>
 
+#include "mo2d/error.hpp"
 #include "mo2d/render.hpp"
 
 namespace mo2d::cli {
 
 namespace {
 
-// The configurations q0(z* + s_k dz) as the samples of a Motion (times `time`).
+// The configurations q0(z* + s_k dz) as the samples of a Motion (times `time`). Where the
+// constraints leave no configuration that far along the mode (a crank's tip cannot go beyond its
+// circle), the amplitude is halved (up to 6 times) and the picture says so on stdout.
+Motion along_mode_once(const Model& m, const StateSpace& ss, const Eigen::VectorXd& dz,
+                       const std::vector<double>& s, const std::vector<double>& time);
+
 Motion along_mode(const Model& m, const StateSpace& ss, const Eigen::VectorXd& dz,
                   const std::vector<double>& s, const std::vector<double>& time) {
+  for (int halvings = 0;; ++halvings) {
+    try {
+      const Motion mo = along_mode_once(m, ss, std::ldexp(1.0, -halvings) * dz, s, time);
+      if (halvings > 0)
+        std::printf("  note: mode drawn at 1/%d of the amplitude asked (no configuration beyond)\n",
+                    1 << halvings);
+      return mo;
+    } catch (const Error&) {
+      if (halvings == 6) throw;
+    }
+  }
+}
+
+Motion along_mode_once(const Model& m, const StateSpace& ss, const Eigen::VectorXd& dz,
+                       const std::vector<double>& s, const std::vector<double>& time) {
   Motion mo;
   mo.time.resize(static_cast<Eigen::Index>(s.size()));
   mo.q0.resize(static_cast<Eigen::Index>(s.size()), m.n0);

@@ -3,8 +3,9 @@
 //   Mr x = Q(z),   Mr = dq1/dw^T M dq1/dw,   Q = dq1/dw^T (f + B u)   (C^T f = 0, eq. 4.1)
 // so the equilibria are the zeros of r(z) = E a1(q0(z), 0), the rows w of the linearization's
 // drift. Newton: G21 dz = -r, G21 = d r / d z the lower-left block of G (Gauss-Newton when
-// dof > p); a backtracking line search on |a| (lengths: independent of the coordinates, which are
-// chosen again at each iterate) and a bounded step keep it on the branch of the start. At r = 0,
+// dof > p); a backtracking line search on |r| and a bounded step keep it on the branch of the
+// start; each iterate chooses its coordinates again, convergence is tested on |a| (lengths,
+// independent of that choice). At r = 0,
 // dQ/dz = Mr G21 (Mr^-1's derivative multiplies Q = 0): the reduced stiffness is Kr = -Mr G21, the
 // Hessian of the potential for conservative loads.
 #include <Eigen/Eigenvalues>
@@ -36,6 +37,15 @@ State at_rest(const Model& m, const VectorXd& q0, double t) {
                     "cannot be at rest",
                 m.name, t);
   return s;
+}
+
+// The same independent coordinates as ss (for the line search of one Newton iteration).
+LinearizeOptions same_coordinates(const Model& m, const StateSpace& ss, LinearizeOptions o) {
+  o.coordinates.clear();
+  o.velocities.clear();
+  for (int k : ss.coordinate_vars) o.coordinates.push_back(m.coordinate_labels[k]);
+  for (int i = ss.p; i < ss.dof; ++i) o.velocities.push_back(m.rate_labels[ss.velocity_vars[i]]);
+  return o;
 }
 
 // |a| at rest in lengths (rotations times their body's size): the accelerations are a = dq1/dw x,
@@ -95,8 +105,10 @@ Equilibrium static_equilibrium(const Model& m, const VectorXd& q0_guess,
   Equilibrium e;
   const VectorXd start = assemble(m, q0_guess, o.t, {}, 1e-13);
   e.state = at_rest(m, start, o.t);
-  // the coordinates are chosen again at every iterate (unless given): those of the start may not
-  // parametrize the configurations near the equilibrium (a crank turned by 90 degrees)
+  // The line search compares |E a| in the coordinates of the iterate (a descent direction
+  // there); the next iterate chooses its coordinates again (unless given): those of the start may
+  // not parametrize the configurations near the equilibrium (a crank turned by 90 degrees).
+  // Convergence is tested on |a|, which does not depend on the choice.
   LinearizeOptions lo = o.linearize;
   lo.outputs.clear();
   e.linear = linearize(m, e.state, lo);
@@ -106,20 +118,20 @@ Equilibrium static_equilibrium(const Model& m, const VectorXd& q0_guess,
     if (r <= o.tolerance * ref || r == 0) break;
     if (e.iterations >= o.max_iterations) not_converged(m, o, e.iterations, r, "no convergence");
     const int p = e.linear.p, dof = e.linear.dof;
-    const MatrixXd G21 = e.linear.G.bottomLeftCorner(dof, p);
-    VectorXd dz = -G21.colPivHouseholderQr().solve(e.linear.drift.tail(dof));
+    const VectorXd rE = e.linear.drift.tail(dof);
+    VectorXd dz = -e.linear.G.bottomLeftCorner(dof, p).colPivHouseholderQr().solve(rE);
     const double size = scaled_size(m, e.linear, dz);
     if (size > o.max_step) dz *= o.max_step / size;
+    const LinearizeOptions fixed = same_coordinates(m, e.linear, lo);
     bool accepted = false;
     for (double alpha = 1; alpha > 1e-4 && !accepted; alpha /= 2) {
       try {
         const State s = at_rest(m, chart_positions(m, e.linear, alpha * dz), o.t);
-        StateSpace next = linearize(m, s, lo);
-        const double rn = merit(m, next);
-        if (rn <= (1 - 1e-4 * alpha) * r) {
+        const StateSpace next = linearize(m, s, fixed);
+        if (next.drift.tail(dof).norm() <= (1 - 1e-4 * alpha) * rE.norm()) {
           e.state = s;
-          e.linear = std::move(next);
-          r = rn;
+          e.linear = o.linearize.coordinates.empty() ? linearize(m, s, lo) : next;
+          r = merit(m, e.linear);
           accepted = true;
         }
       } catch (const Error&) {  // no configuration there, or a singular one: shorter step

@@ -220,12 +220,18 @@ TEST(Modes, RingAndDiscFrequencyExample47) {
   const auto modes = vibration_modes(ss);
   const auto w = frequencies(modes);
   ASSERT_EQ(w.size(), 1u);
-  EXPECT_NEAR(w[0], 2.632965, 5e-7);
+  EXPECT_NEAR(w[0], 2.632965, 5e-7);  // the thesis's figure
+  const double th = std::asin(0.6), xi = std::asin(0.8);
+  const double G = 2 * 9.8 * (std::cos(th) + 2 * std::cos(xi)) * std::sin(xi) /
+                   ((2 * std::cos(th - xi) + 1) *
+                    (2 * std::sin(th) + 3 * std::sin(2 * th - xi) - 2 * std::sin(xi) +
+                     2 * std::sin(th - 2 * xi) + std::sin(2 * th - 3 * xi)) *
+                    (1.0 - 0.3));
+  EXPECT_NEAR(w[0], std::sqrt(-G), 1e-8 * w[0]);  // its closed form (measured 2e-10)
   EXPECT_NEAR(modes[0].damping_ratio, 0, 1e-7);
   int rigid = 0;
   for (const Mode& md : modes) rigid += md.rigid;
   EXPECT_EQ(rigid, 2);
-  const double th = std::asin(0.6), xi = std::asin(0.8);
   const double accel = 2 * 9.8 * std::sin(th) / (2 * std::cos(th - xi) + 1);
   EXPECT_NEAR(ss.drift[2], accel, 1e-9);
   // no equilibrium: Newton says so instead of returning a wrong answer
@@ -263,7 +269,7 @@ TEST(Modes, RingAndDiscTableAgainstMassRatio) {
     const Model model = build_scene_model(scene);
     const auto w = frequencies(vibration_modes(linearize(model, initial_state(scene, model))));
     ASSERT_EQ(w.size(), 1u) << "m2/m1 = " << R;
-    EXPECT_NEAR(w[0], std::sqrt(-G(th)), 2e-5 * omega) << "m2/m1 = " << R;
+    EXPECT_NEAR(w[0], std::sqrt(-G(th)), 1e-8 * omega) << "m2/m1 = " << R;  // measured 5e-11
   }
 }
 
@@ -306,9 +312,9 @@ TEST(Modes, DampedEigenvalueMatchesForwardRun) {
   }
   ASSERT_GE(cross.size(), 5u);
   const double fitted_period = (cross[4] - cross[0]) / 4;
-  EXPECT_NEAR(2 * pi / fitted_period, wd, 2e-4 * wd);
+  EXPECT_NEAR(2 * pi / fitted_period, wd, 2e-5 * wd);  // measured 3.8e-7
   const double fitted_sigma = std::log(peak[4] / peak[1]) / (cross[4] - cross[1]);
-  EXPECT_NEAR(fitted_sigma, sigma, 2e-3 * std::abs(sigma));
+  EXPECT_NEAR(fitted_sigma, sigma, 3e-4 * std::abs(sigma));  // measured 2.4e-5
 }
 
 // The efforts that hold a pose at rest (Theorem 4.3 at zero velocity and acceleration): the pivot
