@@ -59,7 +59,7 @@ std::vector<Mode> vibration_modes(const StateSpace& ss) {
   Eigen::EigenSolver<MatrixXd> es(ss.G);
   if (es.info() != Eigen::Success)
     throw Error("vibration modes: the eigenvalues of G did not converge", "G", ss.t);
-  const Eigen::VectorXcd lam = es.eigenvalues();
+  const Eigen::VectorXcd& lam = es.eigenvalues();
   const double zero = 1e-7 * std::max(1.0, lam.cwiseAbs().maxCoeff());
   for (Eigen::Index i = 0; i < lam.size(); ++i) {
     if (lam[i].imag() < -zero) continue;  // the conjugate of a pair counted once
