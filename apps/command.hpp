@@ -21,5 +21,7 @@ Command add_forward_command(CLI::App& app);
 Command add_render_command(CLI::App& app);
 Command add_crosscheck_command(CLI::App& app);
 Command add_plot_command(CLI::App& app);
+Command add_modes_command(CLI::App& app);      // cmd_modes.cpp
+Command add_linearize_command(CLI::App& app);  // cmd_modes.cpp
 
 }  // namespace mo2d::cli

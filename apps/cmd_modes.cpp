@@ -1,0 +1,192 @@
+// mo2d modes SCENE [--set name=value]... [--out DIR] [--amplitude F] [--filmstrip]
+//   [--coordinates L,...] [--outputs L,...]: the static equilibrium nearest the scene's initial
+//   configuration (under its gravity, springs and effort laws at t0), its stiffness and stability,
+//   the vibration modes (natural frequency in rad/s and Hz, damping ratio) and a picture of each
+//   (the mechanism at +- F x size along the mode, superposed); writes DIR/NAME_modes.json and
+//   DIR/NAME_mode<k>.png (and _mode<k>_filmstrip.png), all or none.
+// mo2d linearize SCENE --at t=T [...]: the linearization about the scene's run at time T (the
+//   forward run from its initial state, or the inverse run with its efforts held), written as
+//   DIR/NAME_G.csv, _H.csv, _C.csv, _D.csv and _linearization.json (docs/linearization.md).
+#include <cmath>
+#include <cstdio>
+#include <string>
+
+#include "command.hpp"
+#include "mo2d/mo2d.hpp"
+#include "mo2d/modes.hpp"
+#include "mode_pictures.hpp"
+#include "scene_options.hpp"
+
+namespace mo2d::cli {
+
+namespace {
+
+struct ModesCliOptions {
+  SceneOptions scene{};
+  double amplitude = 0.1;  // largest node displacement in the pictures, fraction of the size
+  bool filmstrip = false, pictures = true;
+  std::string at = "";  // linearize: "t=T"
+  std::vector<std::string> coordinates{}, outputs{};
+};
+
+LinearizeOptions linearize_options(const ModesCliOptions& o, const Scene& s, const Model& m) {
+  LinearizeOptions lo;
+  lo.coordinates = o.coordinates;
+  lo.outputs = o.outputs;
+  lo.forward = forward_options(s, m);
+  return lo;
+}
+
+void print_modes(const StateSpace& ss, const std::vector<Mode>& modes) {
+  std::printf("  states: ");
+  for (size_t i = 0; i < ss.states.size(); ++i)
+    std::printf("%s%s", i ? ", " : "", ss.states[i].c_str());
+  std::printf("\n  %-4s %14s %12s %12s %12s  %s\n", "mode", "omega_n rad/s", "f_n Hz", "zeta",
+              "omega_d", "eigenvalue");
+  for (size_t k = 0; k < modes.size(); ++k) {
+    const Mode& md = modes[k];
+    const char* kind = md.rigid ? "  (rigid / drift)" : md.oscillatory ? "" : "  (real)";
+    std::printf("  %-4zu %14.8g %12.8g %12.6g %12.8g  %.6g %+.6gi%s\n", k + 1, md.omega_n, md.hz,
+                md.damping_ratio + 0.0, md.omega_d, md.eigenvalue.real(), md.eigenvalue.imag(),
+                kind);
+  }
+}
+
+void print_equilibrium(const Model& m, const Equilibrium& e) {
+  std::printf(
+      "mo2d modes: %s\n  equilibrium: %d Newton iterations, |a| = %.3g m/s^2 at rest, largest "
+      "coordinate change %.6g (m or rad)\n",
+      m.name.c_str(), e.iterations, e.residual, e.moved);
+  for (int i = 0; i < e.linear.p; ++i)
+    std::printf("    %s = %.12g\n", e.linear.states[i].c_str(),
+                e.state.q0[e.linear.coordinate_vars[i]]);
+  if (e.stiffness_eigenvalues.size()) {
+    std::printf("  reduced stiffness eigenvalues:");
+    for (int i = 0; i < e.stiffness_eigenvalues.size(); ++i)
+      std::printf(" %.6g", e.stiffness_eigenvalues[i]);
+    std::printf(" (asymmetry %.2g)\n", e.asymmetry);
+  }
+  std::printf("  stability: %s\n", e.stability.c_str());
+}
+
+int modes(const ModesCliOptions& o) {
+  const Scene scene = load_scene_with_overrides(o.scene);
+  const Model model = build_model_of(scene);
+  EquilibriumOptions eo;
+  eo.t = scene.run.t0;
+  eo.linearize = linearize_options(o, scene, model);
+  // from the initial state of a forward scene, the assembled configuration of an inverse one
+  const VectorXd start =
+      scene.run.solve == Solve::forward ? initial_state(scene, model).q0 : model.q0;
+  const Equilibrium e = static_equilibrium(model, start, eo);
+  print_equilibrium(model, e);
+  const std::vector<Mode> ms = vibration_modes(e.linear);
+  print_modes(e.linear, ms);
+  OutputSet files;
+  OutputSet::Scope scope(files);
+  files.add(output_path(o.scene, scene, "modes.json"), state_space_json(e.linear, ms));
+  const double amplitude = o.amplitude * model.scale;
+  for (size_t k = 0; o.pictures && k < ms.size(); ++k) {
+    if (ms[k].rigid || ms[k].dz.size() == 0 || ms[k].dz.isZero()) continue;
+    const std::string tag = "mode" + std::to_string(k + 1);
+    write_mode_picture(model, e.linear, ms[k], amplitude,
+                       output_path(o.scene, scene, tag + ".png"));
+    if (o.filmstrip)
+      write_mode_filmstrip(model, e.linear, ms[k], amplitude,
+                           output_path(o.scene, scene, tag + "_filmstrip.png"));
+  }
+  files.commit();
+  for (const auto& p : files.paths()) std::printf("  wrote %s\n", p.c_str());
+  return 0;
+}
+
+double time_of(const std::string& at, double t0) {
+  if (at.empty()) return t0;
+  if (at.rfind("t=", 0) != 0) throw Error("--at: expected t=TIME, got '" + at + "'", "--at");
+  size_t used = 0;
+  const double t = std::stod(at.substr(2), &used);
+  if (used != at.size() - 2 || !std::isfinite(t))
+    throw Error("--at: '" + at + "' is not t=<number>", "--at");
+  return t;
+}
+
+// The scene's state (and, for an inverse scene, its efforts held constant) at time t.
+State reference_state(const Scene& s, const Model& m, double t, LinearizeOptions& lo) {
+  if (s.run.solve == Solve::forward) {
+    const State start = initial_state(s, m);
+    if (t == start.t) return start;
+    ForwardOptions run = forward_options(s, m);
+    if (t < run.t0) throw Error("--at: t = " + std::to_string(t) + " is before t0", "--at");
+    run.t1 = t;
+    run.samples = 2;
+    const Trajectory r = forward_dynamics(m, start, run);
+    return {t, r.q0.row(1).transpose(), r.q1.row(1).transpose()};
+  }
+  InverseOptions run = inverse_options(s);
+  const bool first = t == run.t0;
+  run.t1 = first ? run.t0 + 1e-3 : t;
+  run.samples = 2;
+  const Trajectory r = inverse_dynamics(m, s.motion, run);
+  const int i = first ? 0 : 1;
+  lo.forward.efforts.clear();
+  for (int k = 0; k < m.n_inputs(); ++k)
+    lo.forward.efforts.push_back(Law::constant(r.efforts(i, k)));
+  return {t, r.q0.row(i).transpose(), r.q1.row(i).transpose()};
+}
+
+int linearize_command(const ModesCliOptions& o) {
+  const Scene scene = load_scene_with_overrides(o.scene);
+  const Model model = build_model_of(scene);
+  LinearizeOptions lo = linearize_options(o, scene, model);
+  const State ref = reference_state(scene, model, time_of(o.at, scene.run.t0), lo);
+  const StateSpace ss = linearize(model, ref, lo);
+  const std::vector<Mode> ms = vibration_modes(ss);
+  std::printf("mo2d linearize: %s at t = %g s (%d states, %d inputs, %d outputs), |drift| = %.3g\n",
+              model.name.c_str(), ss.t, ss.n(), static_cast<int>(ss.inputs.size()),
+              static_cast<int>(ss.outputs.size()), ss.drift.norm());
+  print_modes(ss, ms);
+  OutputSet out;
+  for (char c : {'G', 'H', 'C', 'D'})
+    out.add(output_path(o.scene, scene, std::string(1, c) + ".csv"), state_space_csv(ss, c));
+  out.add(output_path(o.scene, scene, "linearization.json"), state_space_json(ss, ms));
+  out.commit();
+  for (const auto& p : out.paths()) std::printf("  wrote %s\n", p.c_str());
+  return 0;
+}
+
+void add_common(CLI::App* sub, ModesCliOptions& o) {
+  add_scene_options(sub, o.scene, true);
+  sub->add_option("--coordinates", o.coordinates,
+                  "the independent coordinates (q0 labels; default: chosen by pivoting)")
+      ->delimiter(',');
+  sub->add_option("--outputs", o.outputs,
+                  "outputs y = C x + D u: coordinates, rates, quantities (body angles, joint "
+                  "angles and rates, spring lengths, named points)")
+      ->delimiter(',');
+}
+
+}  // namespace
+
+Command add_modes_command(CLI::App& app) {
+  auto o = std::make_shared<ModesCliOptions>();
+  CLI::App* sub = app.add_subcommand(
+      "modes", "Static equilibrium, stiffness, vibration modes and their pictures");
+  add_common(sub, *o);
+  sub->add_option("--amplitude", o->amplitude,
+                  "largest node displacement in the mode pictures, fraction of the size (0.1)")
+      ->check(CLI::PositiveNumber);
+  sub->add_flag("--filmstrip", o->filmstrip, "also a filmstrip of one period of each mode");
+  sub->add_flag("!--no-pictures", o->pictures, "no mode pictures");
+  return {sub, [o] { return modes(*o); }};
+}
+
+Command add_linearize_command(CLI::App& app) {
+  auto o = std::make_shared<ModesCliOptions>();
+  CLI::App* sub = app.add_subcommand(
+      "linearize", "State-space model dx/dt = G x + H u, y = C x + D u about the run at a time");
+  add_common(sub, *o);
+  sub->add_option("--at", o->at, "t=TIME on the scene's run (default: its start)");
+  return {sub, [o] { return linearize_command(*o); }};
+}
+
+}  // namespace mo2d::cli

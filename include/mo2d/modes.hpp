@@ -1,0 +1,138 @@
+#pragma once
+// Static equilibria, linearization and vibration modes (Orsino §4.5; docs/linearization.md).
+//
+// Independent coordinates. At a reference state (t, q0*, q1*) the state x = (z, w) holds
+//   z = E0 q0   p coordinates of q0 chosen so that K0 = [Psi; E0] is regular (p = n0 - rank Psi),
+//   w = E q1    dof quasi-velocities: the rates of those p coordinates first (so dz/dt = w.head(p)
+//               exactly), then dof - p more where the velocity constraints leave rates with no
+//               coordinate (one-node bodies' rotations, rolling), so that K = [A; E] is regular.
+// E0 and E select labels (rows of the identity), chosen by column-pivoted QR on the tangent
+// spaces (dimensionless columns, mo2d/kinematics.hpp) or given by the user. The map back is the
+// chart q0(z): psi(q0) = 0 with E0 q0 = z (assemble), q1(z, w): [A(q0); E] q1 = [b; w]. Its
+// tangent bases dq0/dz = K0^-1 [0; I] and dq1/dw = K^-1 [0; I] vary continuously with the state
+// (the requirement of Proposition 4.4 on the orthogonal complement C): a raw SVD null space would
+// not, and differences of it would be meaningless.
+//
+// Linearization: dx/dt = (w.head(p), E a1(t, q0(z), q1(z, w), u)), so, about x*,
+//   G = [ 0   [I 0]                                       ]     H = [ 0        ]
+//       [ E (da/dq0 dq0/dz + da/dq1 dq1/dz)  E da/dq1 dq1/dw ]         [ E da/du  ]
+// with da/dq0, da/dq1 from acceleration_jacobian (mo2d/jacobian.hpp) and da/du = M-solve of B
+// (ForwardData::B; the accelerations are affine in u). dq1/dz = K^-1 [db/dq0 - dA/dq0 q1; 0] dq0/dz
+// vanishes at rest for scleronomic constraints. Outputs y = C x + D u for chosen labels.
+#include <Eigen/Core>
+#include <complex>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "mo2d/forward.hpp"
+#include "mo2d/model.hpp"
+
+namespace mo2d {
+
+struct LinearizeOptions {
+  // Independent coordinates (q0 labels, p of them) and the further independent quasi-velocities
+  // (q1 labels, dof - p); empty: chosen by pivoting. Given: checked (Error naming them).
+  std::vector<std::string> coordinates{};
+  std::vector<std::string> velocities{};
+  // Outputs y: coordinate labels, quasi-velocity labels, or derived quantities (Model::quantities:
+  // body angles, joint angles and rates, spring lengths, named points "tip.x" ...).
+  std::vector<std::string> outputs{};
+  // Efforts (one law per input; feedback laws make G the closed loop), formulation, penalty.
+  ForwardOptions forward{};
+};
+
+// The linear model dx/dt = G x + H u, y = C x + D u about a reference, with its labels.
+struct StateSpace {
+  double t = 0;
+  Eigen::VectorXd q0, q1, u;  // the reference state and efforts (u: the laws' values there)
+  int p = 0, dof = 0;         // position and velocity coordinates: x = (z, w), n = p + dof
+  std::vector<int> coordinate_vars, velocity_vars;  // z_i = q0[coordinate_vars[i]], w likewise
+  std::vector<std::string> states;                  // p coordinate labels, then dof rate labels
+  std::vector<std::string> inputs, outputs;
+  Eigen::MatrixXd G, H, C, D;  // n x n, n x nu, ny x n, ny x nu
+  Eigen::VectorXd drift;       // n: dx/dt at the reference (0 at an equilibrium)
+  Eigen::MatrixXd dq0_dz;      // n0 x p: tangent basis of the positions (the chart's derivative)
+  Eigen::MatrixXd dq1_dw;      // n1 x dof: basis of the velocities (C of Theorem 2.8)
+  Eigen::MatrixXd dq1_dz;      // n1 x p: the velocities' change with the position at fixed w
+  std::string approximate;     // what was differenced (acceleration_jacobian's note and ours)
+  int n() const { return p + dof; }
+};
+
+// Linearization about (reference.t, reference.q0, reference.q1); the state must be consistent
+// (psi = 0, A q1 = b). Throws Error for a singular configuration, bad labels, non-finite values.
+StateSpace linearize(const Model& m, const State& reference, const LinearizeOptions& o = {});
+
+// The configuration q0(z) of the chart of ss: positions assembled with the independent
+// coordinates at ss's values plus dz (Error if there is none, naming the coordinates).
+Eigen::VectorXd chart_positions(const Model& m, const StateSpace& ss, const Eigen::VectorXd& dz);
+
+struct EquilibriumOptions {
+  double t = 0;              // time of the loads and laws
+  double tolerance = 1e-10;  // on |E a1|, relative to |g| (or to the start's, without gravity)
+  int max_iterations = 50;   // Newton iterations
+  double max_step = 0.25;    // largest step, as a fraction of Model::scale (dimensionless)
+  LinearizeOptions linearize{};
+};
+
+struct Equilibrium {
+  State state;          // q1 = 0
+  int iterations = 0;   // Newton iterations
+  double residual = 0;  // |E a1| at the end (m/s^2, rad/s^2 mixed)
+  double moved = 0;     // largest coordinate change from the start
+  StateSpace linear;    // the linearization there
+  // Reduced stiffness Kr = -Mr G21 (p x p, with p == dof), Mr = dq1/dw^T M dq1/dw: the Hessian of
+  // the potential in the coordinates z for conservative loads (symmetric then).
+  Eigen::MatrixXd stiffness, reduced_mass;
+  Eigen::VectorXd stiffness_eigenvalues;  // of (Kr + Kr^T) / 2, ascending
+  double asymmetry = 0;                   // |Kr - Kr^T| / |Kr| (follower loads, feedback)
+  std::string stability;                  // "stable", "unstable", "neutral"
+};
+
+// Newton on E a1(q0(z), 0) = 0 (the reduced equations at rest) from the configuration q0_guess
+// (assembled first), with a backtracking line search on |a1| and steps bounded by max_step (the
+// coordinates z chosen again at every iterate unless given): the equilibrium of the branch
+// nearest the start. Throws Error (the residual, the iterations)
+// where it does not converge, e.g. a mechanism without equilibrium (the ring and disc).
+Equilibrium static_equilibrium(const Model& m, const Eigen::VectorXd& q0_guess,
+                               const EquilibriumOptions& o = {});
+
+// The efforts (one per input) that hold the configuration q0 at rest at time t: the least-squares
+// solution of C^T (f + B u) = 0 (C = dq1/dw); `residual` is |C^T (f + B u)| left (N, N m). Throws
+// Error when the inputs cannot hold the pose (the residual above 1e-9 of |C^T f|). Friction is not
+// counted (static friction is indeterminate).
+Eigen::VectorXd holding_efforts(const Model& m, const Eigen::VectorXd& q0, double t = 0,
+                                double* residual = nullptr);
+
+// One eigenvalue of G (for a complex pair, the one with positive imaginary part).
+struct Mode {
+  std::complex<double> eigenvalue;
+  double omega_n = 0;        // |lambda| (rad/s)
+  double omega_d = 0;        // |Im lambda| (rad/s)
+  double hz = 0;             // omega_n / (2 pi): the natural frequency in Hz
+  double damping_ratio = 1;  // -Re lambda / |lambda| (1 for a real negative, -1 real positive)
+  bool oscillatory = false;  // Im lambda != 0
+  bool rigid = false;        // |lambda| ~ 0: a rigid-body or drift motion
+  Eigen::VectorXcd x;        // eigenvector in the states (n)
+  Eigen::VectorXd dz;        // real position shape (p), phase-aligned, max |component| = 1
+  Eigen::VectorXd dq0;       // dq0/dz dz: every coordinate of q0 (every node) for that shape
+};
+// The modes of ss, oscillatory ones by ascending omega_n first, then the real ones.
+std::vector<Mode> vibration_modes(const StateSpace& ss);
+// Node displacements of a mode scaled so that the largest node moves by `amplitude` (m): (label
+// "body.node", dx, dy) for every node of every body (ground excluded).
+struct NodeShape {
+  std::string label;
+  double dx = 0, dy = 0;
+};
+std::vector<NodeShape> mode_node_shapes(const Model& m, const Mode& mode, double amplitude);
+// dz of a mode scaled so that the largest node displacement is `amplitude` (m).
+Eigen::VectorXd mode_step(const Model& m, const Mode& mode, double amplitude);
+
+// Export: one matrix ('G', 'H', 'C' or 'D') as CSV, a header "<name>,<column labels...>" then one
+// row per row label; and JSON {states, inputs, outputs, G, H, C, D, reference, drift, modes}.
+// Numbers with 17 significant digits; non-finite entries are refused (Error naming the entry).
+std::string state_space_csv(const StateSpace& ss, char matrix);
+std::string state_space_json(const StateSpace& ss, const std::vector<Mode>& modes);
+
+}  // namespace mo2d
