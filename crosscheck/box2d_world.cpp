@@ -173,6 +173,9 @@ Box2DWorld build_box2d_world(const Model& m, const Eigen::VectorXd& q0, const Ei
       case ConstraintKind::user_velocity:
         refuse("user velocity constraint '" + c.name + "' has no Box2D equivalent", c.name);
         break;
+      case ConstraintKind::gear:
+        refuse("gear '" + c.name + "' has no Box2D equivalent yet", c.name);
+        break;
       case ConstraintKind::revolute: {
         const auto& r = c.as<Constraint::Revolute>();
         j.body1 = r.body1;
