@@ -20,7 +20,7 @@ void check_element_name(const Reader& r, const YAML::Node& key, const std::strin
 std::string body_of(const Reader& r, const YAML::Node& map, const char* key,
                     const std::string& what, const SystemInfo& info, bool ground_allowed) {
   const YAML::Node n = r.required(map, key, what);
-  const std::string name = r.string(n, what + "." + key);
+  std::string name = r.string(n, what + "." + key);
   if (ground_allowed && name == "ground") return name;
   if (std::find(info.bodies.begin(), info.bodies.end(), name) == info.bodies.end())
     r.fail(n,
