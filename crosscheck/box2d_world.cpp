@@ -55,6 +55,43 @@ b2Vec2 local_axis(const Model& m, const Constraint::Slider& c) {
   return to_b2((pj - pi).normalized());
 }
 
+[[noreturn]] void refuse(const std::string& what, const std::string& element);
+
+// The revolute joint of w from body `from` (body 1, node_a) to body `to` (body 2); nullptr if none.
+b2Joint* revolute_between(const Box2DWorld& w, int from, int to) {
+  for (const JointMap& j : w.joints)
+    if (j.kind == JointKind::revolute && j.body1 == from && j.body2 == to) return j.joint;
+  return nullptr;
+}
+
+// A gear pair as b2GearJoint: coordinate1 + ratio coordinate2 = constant, each coordinate the
+// angle of a revolute joint's body B relative to its body A; with joint1 carrier -> j and
+// joint2 carrier -> k this is theta_j - theta_c - rho (theta_k - theta_c) = constant, so
+// ratio = -rho. Racks are not mapped.
+void add_gear_joint(const Model& m, Box2DWorld& w, const Constraint& c) {
+  const auto& g = c.as<Constraint::Gear>();
+  if (g.coord >= 0) refuse("rack '" + c.name + "' has no Box2D equivalent mapped yet", c.name);
+  int driver = -1;
+  for (const Constraint& k : m.constraints)
+    if (const auto* cd = std::get_if<Constraint::Coordinate>(&k.def); cd && cd->coord == g.phi)
+      for (auto [body, weight] : cd->angle_terms)
+        if (weight > 0) driver = body;
+  b2Joint* j1 = revolute_between(w, g.carrier, g.body);
+  b2Joint* j2 = driver >= 0 ? revolute_between(w, g.carrier, driver) : nullptr;
+  if (!j1 || !j2)
+    refuse("gear '" + c.name +
+               "': Box2D's gear joint needs a revolute joint from the carrier (node_a) to the "
+               "body and one to the driver",
+           c.name);
+  b2GearJointDef def;
+  def.joint1 = j1;
+  def.joint2 = j2;
+  def.bodyA = j1->GetBodyB();
+  def.bodyB = j2->GetBodyB();
+  def.ratio = static_cast<float>(-g.ratio);
+  w.world->CreateJoint(&def);
+}
+
 void refuse(const std::string& what, const std::string& element) {
   throw Error("Box2D cross-check: " + what, element);
 }
@@ -173,6 +210,9 @@ Box2DWorld build_box2d_world(const Model& m, const Eigen::VectorXd& q0, const Ei
       case ConstraintKind::user_velocity:
         refuse("user velocity constraint '" + c.name + "' has no Box2D equivalent", c.name);
         break;
+      case ConstraintKind::gear:  // Box2D's gear joint couples the two shafts' revolute joints
+        add_gear_joint(m, w, c);
+        continue;
       case ConstraintKind::revolute: {
         const auto& r = c.as<Constraint::Revolute>();
         j.body1 = r.body1;

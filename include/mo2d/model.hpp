@@ -85,7 +85,8 @@ enum class ConstraintKind {
   slot,
   coordinate,
   user_position,
-  user_velocity
+  user_velocity,
+  gear
 };
 const char* constraint_kind_name(ConstraintKind k);  // "rigid body", "pin-in-slot", ...
 
@@ -135,8 +136,25 @@ struct Constraint {
     std::vector<VarRef> args, rates;
     std::function<Jet(std::span<const Jet>, std::span<const Jet>, Jet)> g;
   };
+  // Gear pair or rack and pinion (GearDef, RackDef; src/constraints/gear.hpp): with
+  // phi = q0[phi] the carrier-relative angle of the driving body k (an extra coordinate,
+  // d/dt phi = omega_k - omega_c),
+  //   gear: theta_j - theta_c - ratio phi - offset = 0 (mod 2 pi),  omega_j - omega_c = ratio phi'
+  //   rack: q0[coord] - ratio phi - offset = 0,                      q' = ratio phi'
+  struct Gear {
+    static constexpr ConstraintKind kind = ConstraintKind::gear;
+    int body = -1;     // driven body j (gear); -1 for a rack
+    int carrier = -1;  // carrier (housing) body c; -1: the ground
+    int coord = -1;    // rack: the slide coordinate (q0 index); -1 for a gear
+    int phi = -1;      // q0 index of the carrier-relative angle of the driving body k
+    double ratio = 1;  // rho (gear, dimensionless) or the pinion radius r (rack, m)
+    double offset = 0;
+    VarRef driven{};     // q1 entry of omega_j (gear) or of q' (rack)
+    VarRef carrier_w{};  // q1 entry of omega_c (gear with a moving carrier; else var -1, body -1)
+    VarRef phi_rate{};   // q1 entry of phi'
+  };
   using Def = std::variant<Rigid, Revolute, Prismatic, Slider, Coordinate, UserPosition,
-                           UserVelocity>;  // in the order of ConstraintKind
+                           UserVelocity, Gear>;  // in the order of ConstraintKind
 
   std::string name;
   int owner = 0;

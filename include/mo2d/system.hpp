@@ -149,6 +149,34 @@ struct VelocityConstraintDef {
   std::function<Jet(std::span<const Jet> a, Jet t)> g_labels{};
 };
 
+// A gear pair (src/constraints/gear.hpp): the driving body `driver` (k) turns the driven body
+// `body` (j), both carried by `carrier` (c, the housing; "ground" allowed), on carrier-relative
+// rates:  omega_j - omega_c = ratio (omega_k - omega_c).  ratio = -z_k / z_j for two external
+// spur gears of z_k and z_j teeth, +z_k / z_j for an internal (ring) gear. The bodies need two
+// nodes each (their angles). Adds the coordinate "name.phi" (theta_k - theta_c, unwrapped), the
+// reactions "name.torque" (the mesh torque on j; -ratio times it acts on k) and
+// "name.carrier_torque" (the mesh torque on the carrier, -(1 - ratio) name.torque).
+struct GearDef {
+  std::string name{};
+  std::string body{};             // driven body j
+  std::string driver{};           // driving body k
+  std::string carrier{"ground"};  // housing c
+  double ratio = 1;               // rho, finite and non-zero
+};
+
+// A rack and pinion (src/constraints/gear.hpp): the slide coordinate q of a prismatic joint or
+// pin-in-slot `slide` (its rack) follows the pinion's rotation relative to the slide's axis body
+// c (the carrier):  q' = radius (omega_pinion - omega_c). radius is signed (the pitch radius,
+// positive when a counter-clockwise pinion drives the rack along +q). Adds the coordinate
+// "name.phi" (the pinion angle relative to c, unwrapped) and the reaction "name.force" (the
+// force on the rack along the axis; -radius times it acts on the pinion).
+struct RackDef {
+  std::string name{};
+  std::string slide{};   // a prismatic or pin-in-slot joint of this System
+  std::string pinion{};  // body with two nodes
+  double radius = 0;     // m, finite and non-zero
+};
+
 // A force applied at a point fixed in a body (given in the System's frame at the initial
 // configuration) or a pure torque on a body. The components are laws (mo2d/law.hpp): functions of
 // time, or of time and the state ("crank.theta", "crank.w"); the force's components are in the
@@ -257,6 +285,8 @@ class System {
   System& add_prismatic(PrismaticDef joint);
   System& add_pin_in_slot(PinInSlotDef joint);
   System& add_coordinate(CoordinateDef coordinate);
+  System& add_gear(GearDef gear);
+  System& add_rack(RackDef rack);
   System& add_constraint(PositionConstraintDef constraint);
   System& add_constraint(VelocityConstraintDef constraint);
   System& add_force(ForceDef force);
@@ -275,6 +305,8 @@ class System {
   const std::vector<PrismaticDef>& prismatics() const { return prismatics_; }
   const std::vector<PinInSlotDef>& slots() const { return slots_; }
   const std::vector<CoordinateDef>& coordinates() const { return coordinates_; }
+  const std::vector<GearDef>& gears() const { return gears_; }
+  const std::vector<RackDef>& racks() const { return racks_; }
   const std::vector<PositionConstraintDef>& position_constraints() const { return pos_; }
   const std::vector<VelocityConstraintDef>& velocity_constraints() const { return vel_; }
   const std::vector<ForceDef>& forces() const { return forces_; }
@@ -294,6 +326,8 @@ class System {
   std::vector<PrismaticDef> prismatics_;
   std::vector<PinInSlotDef> slots_;
   std::vector<CoordinateDef> coordinates_;
+  std::vector<GearDef> gears_;
+  std::vector<RackDef> racks_;
   std::vector<PositionConstraintDef> pos_;
   std::vector<VelocityConstraintDef> vel_;
   std::vector<ForceDef> forces_;

@@ -7,9 +7,11 @@
 //   prismatic_slot.hpp  prismatic joint, pin-in-slot (5.31) and the rotation lock (5.30)
 //   coordinate.hpp      extra coordinates (AddCoordinate)
 //   user.hpp            user position psi(x, t) and velocity g(x, v, t) constraints (2.4, Def. 2.1)
+//   gear.hpp            gear pair and rack and pinion on carrier-relative rates
 // common.hpp holds the shared helpers and the entry adapters, sinks.hpp the sinks.
 #include "constraints/common.hpp"
 #include "constraints/coordinate.hpp"
+#include "constraints/gear.hpp"
 #include "constraints/prismatic_slot.hpp"
 #include "constraints/revolute.hpp"
 #include "constraints/rigid.hpp"
@@ -49,6 +51,9 @@ void position_rows(const Model& m, const Constraint& c, const Eigen::Ref<const V
       break;
     case ConstraintKind::user_velocity:
       break;
+    case ConstraintKind::gear:
+      gear_position(m, std::get<Constraint::Gear>(c.def), r, q0, res, rows);
+      break;
   }
 }
 
@@ -81,6 +86,9 @@ void velocity_rows(const Model& m, const Constraint& c, const Eigen::Ref<const V
     case ConstraintKind::user_velocity:
       user_g_velocity(std::get<Constraint::UserVelocity>(c.def), r, q0, t, rhs, rows);
       break;
+    case ConstraintKind::gear:
+      gear_velocity(std::get<Constraint::Gear>(c.def), r, rhs, rows);
+      break;
   }
 }
 
@@ -111,6 +119,9 @@ inline void acceleration_rows(const Model& m, const Constraint& c,
       break;
     case ConstraintKind::user_velocity:
       user_g_acceleration(std::get<Constraint::UserVelocity>(c.def), r, q0, q1, t, rhs);
+      break;
+    case ConstraintKind::gear:
+      gear_acceleration(r, rhs);
       break;
   }
 }

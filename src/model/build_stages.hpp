@@ -72,7 +72,9 @@ struct Flat {
   std::vector<Owned<RevoluteDef>> revolutes;
   std::vector<Owned<PrismaticDef>> prismatics;
   std::vector<Owned<PinInSlotDef>> slots;
-  std::vector<Owned<CoordinateDef>> coordinates;
+  std::vector<Owned<CoordinateDef>> coordinates;  // with one "name.phi" per gear and rack
+  std::vector<Owned<GearDef>> gears;
+  std::vector<Owned<RackDef>> racks;
   std::vector<Owned<PositionConstraintDef>> pos;
   std::vector<Owned<VelocityConstraintDef>> vel;
   std::vector<Owned<ForceDef>> forces;  // point in world, force components in the owner's frame
@@ -200,6 +202,14 @@ struct JointReactions {
 // Numbering::q0 with the extra coordinates.
 JointReactions add_rows(const Flat& flat, const Elements& el, const Reduced& red, Numbering& num,
                         Model& m);
+
+// Appends c with nrow0 position rows and nrow1 velocity rows (labelled c.name + labels0[k],
+// c.name + labels1[k]); returns its index in m.constraints.
+int add_constraint(Model& m, Constraint c, int nrow0, int nrow1,
+                   const std::vector<std::string>& labels0,
+                   const std::vector<std::string>& labels1);
+// Gears and racks (gears.cpp): their rows after the extra coordinates (they read "name.phi").
+void add_gear_rows(const Flat& flat, const Numbering& num, Model& m);
 
 // A velocity constraint given by labels (VelocityConstraintDef::labels, g_labels), as coords,
 // rates and g: each label sorted by the model's coordinate and quasi-velocity labels (seen from

@@ -43,6 +43,39 @@ void flatten_bodies(const System& s, const std::string& prefix, const Frame& fra
   }
 }
 
+// The axis body of a rack's slide ("ground" too): the body of its axis_from node "body.node".
+std::string rack_carrier(const System& s, const RackDef& r) {
+  auto body_of = [](const std::string& node) { return node.substr(0, node.rfind('.')); };
+  for (const auto& j : s.prismatics())
+    if (j.name == r.slide) return body_of(j.axis_from);
+  for (const auto& j : s.slots())
+    if (j.name == r.slide) return body_of(j.axis_from);
+  throw Error("rack '" + r.name + "': unknown slide '" + r.slide +
+                  "' (a prismatic or pin-in-slot joint of the same system)",
+              r.name);
+}
+
+// A gear or a rack with its carrier-relative angle phi: an extra coordinate "name.phi",
+// d/dt phi = omega_k - omega_c (holonomic: integer weights), that its rows read (gears.cpp). The
+// carrier of a rack is its slide's axis body.
+void flatten_gears(const System& s, const std::string& prefix, int tree_index, Flat& out) {
+  for (const auto& g : s.gears()) {
+    check_name(g.name, "gear");
+    CoordinateDef phi{.name = g.name + ".phi", .rate = {{g.driver + ".w", 1.0}}};
+    if (g.carrier != "ground") phi.rate.emplace_back(g.carrier + ".w", -1.0);
+    out.coordinates.push_back({std::move(phi), tree_index, prefix});
+    out.gears.push_back({g, tree_index, prefix});
+  }
+  for (const auto& r : s.racks()) {
+    check_name(r.name, "rack");
+    CoordinateDef phi{.name = r.name + ".phi", .rate = {{r.pinion + ".w", 1.0}}};
+    const std::string carrier = rack_carrier(s, r);
+    if (carrier != "ground") phi.rate.emplace_back(carrier + ".w", -1.0);
+    out.coordinates.push_back({std::move(phi), tree_index, prefix});
+    out.racks.push_back({r, tree_index, prefix});
+  }
+}
+
 void flatten_joints(const System& s, const std::string& prefix, int tree_index, Flat& out) {
   for (const auto& j : s.revolutes()) {
     check_name(j.name, "revolute joint");
@@ -62,6 +95,7 @@ void flatten_joints(const System& s, const std::string& prefix, int tree_index, 
                   c.name);
     out.coordinates.push_back({c, tree_index, prefix});
   }
+  flatten_gears(s, prefix, tree_index, out);
   for (const auto& c : s.position_constraints()) {
     check_name(c.name, "constraint");
     out.pos.push_back({c, tree_index, prefix});

@@ -24,8 +24,8 @@ static_assert(in_kind_order<Constraint::Rigid>() && in_kind_order<Constraint::Re
                   in_kind_order<Constraint::Prismatic>() && in_kind_order<Constraint::Slider>() &&
                   in_kind_order<Constraint::Coordinate>() &&
                   in_kind_order<Constraint::UserPosition>() &&
-                  in_kind_order<Constraint::UserVelocity>() &&
-                  std::variant_size_v<Constraint::Def> == 7,
+                  in_kind_order<Constraint::UserVelocity>() && in_kind_order<Constraint::Gear>() &&
+                  std::variant_size_v<Constraint::Def> == 8,
               "Constraint::Def lists one struct per ConstraintKind, in the order of the enum");
 }  // namespace
 
@@ -45,6 +45,8 @@ const char* constraint_kind_name(ConstraintKind k) {
       return "user (position)";
     case ConstraintKind::user_velocity:
       return "user (velocity)";
+    case ConstraintKind::gear:
+      return "gear";
   }
   return "?";
 }

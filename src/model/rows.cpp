@@ -1,10 +1,10 @@
 // Stage 5 of build_model: the constraint rows (constraints/constraints.hpp gives their equations),
 // numbered in this order: rigid bodies (Example 2.6), revolute joints that are not eliminated,
 // prismatic joints (eq. 5.31, with the rotation lock of eq. 5.30 unless it is eliminated),
-// pin-in-slot joints, extra coordinates, user position and velocity constraints. Each row has a
-// label (constraint name + suffix). With them: the reactions (which velocity row's multiplier
-// gives each joint force; eliminated joints get theirs from the merge edges) and the inputs
-// (columns of B: the generalized force per unit actuator effort).
+// pin-in-slot joints, extra coordinates, gears and racks (gears.cpp), user position and velocity
+// constraints. Each row has a label (constraint name + suffix). With them: the reactions (which
+// velocity row's multiplier gives each joint force; eliminated joints get theirs from the merge
+// edges) and the inputs (columns of B: the generalized force per unit actuator effort).
 #include <cmath>
 
 #include "constraints/constraints.hpp"
@@ -19,7 +19,8 @@ bool is_integer(double w) {
   return std::abs(w - std::round(w)) < 1e-12;
 }
 
-// Appends c with nrow0 position rows and nrow1 velocity rows; returns its index.
+}  // namespace
+
 int add_constraint(Model& m, Constraint c, int nrow0, int nrow1,
                    const std::vector<std::string>& labels0,
                    const std::vector<std::string>& labels1) {
@@ -37,6 +38,8 @@ int add_constraint(Model& m, Constraint c, int nrow0, int nrow1,
   m.constraints.push_back(std::move(c));
   return static_cast<int>(m.constraints.size()) - 1;
 }
+
+namespace {
 
 // A body with n >= 2 nodes: 1 + 2 (n - 2) position rows, 2 (n - 1) velocity rows.
 void add_rigid_rows(Model& m) {
@@ -296,6 +299,7 @@ JointReactions add_rows(const Flat& flat, const Elements& el, const Reduced& red
   add_prismatic_rows(flat, el, red, num, m, out);
   add_slot_rows(flat, el, red, num, m);
   add_coordinate_rows(flat, num, m);
+  add_gear_rows(flat, num, m);
   add_user_rows(flat, num, m);
   return out;
 }

@@ -45,6 +45,14 @@ System& System::add_coordinate(CoordinateDef coordinate) {
   coordinates_.push_back(std::move(coordinate));
   return *this;
 }
+System& System::add_gear(GearDef gear) {
+  gears_.push_back(std::move(gear));
+  return *this;
+}
+System& System::add_rack(RackDef rack) {
+  racks_.push_back(std::move(rack));
+  return *this;
+}
 System& System::add_constraint(PositionConstraintDef constraint) {
   pos_.push_back(std::move(constraint));
   return *this;

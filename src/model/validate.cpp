@@ -263,6 +263,8 @@ void check_names(const Flat& flat) {
   for (const auto& j : flat.prismatics) claim(j.prefix + j.def.name, "prismatic joint");
   for (const auto& j : flat.slots) claim(j.prefix + j.def.name, "pin-in-slot joint");
   for (const auto& c : flat.coordinates) claim(c.prefix + c.def.name, "coordinate");
+  for (const auto& g : flat.gears) claim(g.prefix + g.def.name, "gear");
+  for (const auto& r : flat.racks) claim(r.prefix + r.def.name, "rack");
   for (const auto& c : flat.pos) claim(c.prefix + c.def.name, "constraint");
   for (const auto& c : flat.vel) claim(c.prefix + c.def.name, "constraint");
 }

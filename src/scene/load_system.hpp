@@ -39,7 +39,8 @@ struct Subsystems {
 };
 
 inline constexpr std::initializer_list<const char*> kSystemKeys = {
-    "ground", "bodies", "joints", "coordinates", "constraints", "loads", "instances", "points"};
+    "ground", "bodies",      "joints", "coordinates", "gears",
+    "racks",  "constraints", "loads",  "instances",   "points"};
 
 // A law from an expression of t, the parameters and quantities of the state (its other names,
 // resolved by build_model); a function of time only when it names none. `uses` (if given)
@@ -54,6 +55,10 @@ void read_outputs(const Reader& r, const YAML::Node& node, const SystemInfo& inf
 // The `friction` entry of joint `name` (load_friction.cpp), if any, added to `out`.
 void read_joint_friction(const Reader& r, const YAML::Node& joint, const std::string& name,
                          bool revolute, System& out);
+
+// gears: and racks: (load_gears.cpp), added to `out`.
+void read_gears(const Reader& r, const YAML::Node& gears, const YAML::Node& racks, System& out,
+                SystemInfo& info);
 
 // Fill `out` from `block`; root: gravity is allowed in loads.
 SystemInfo read_system(const Reader& r, const YAML::Node& block, System& out, bool root,
