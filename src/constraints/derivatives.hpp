@@ -5,7 +5,7 @@
 // position along dq0, dv of a node velocity along dq1 (node_velocity of dq0, dq1: a fixed node
 // does not move, so both are 0 there).
 //
-//   revolute, coordinate, prismatic lock:  A constant, c = 0:  dA = 0, dc = 0
+//   revolute, coordinate, gear, prismatic lock:  A constant, c = 0:  dA = 0, dc = 0
 //   rigid (rigid.hpp):   A[omega] = -z x (p_k - p0)        dA[omega] = -z x (dp_k - dp0)
 //                        c = omega z x (v_k - v0)          dc = domega z x (v_k - v0)
 //                                                               + omega z x (dv_k - dv0)
@@ -169,6 +169,7 @@ void velocity_rows_derivative(const Model& m, const Constraint& c, const VecRef&
       break;
     case ConstraintKind::revolute:
     case ConstraintKind::coordinate:
+    case ConstraintKind::gear:  // constant coefficients (gear.hpp)
       break;
   }
 }
@@ -254,6 +255,7 @@ inline void acceleration_rows_derivative(const Model& m, const Constraint& c, co
       drhs[r] = drhs[r + 1] = 0;
       break;
     case ConstraintKind::coordinate:
+    case ConstraintKind::gear:  // A a1 = 0 (gear.hpp)
       drhs[r] = 0;
       break;
   }
