@@ -20,5 +20,6 @@ Command add_inverse_command(CLI::App& app);
 Command add_forward_command(CLI::App& app);
 Command add_render_command(CLI::App& app);
 Command add_crosscheck_command(CLI::App& app);
+Command add_sweep_command(CLI::App& app);
 
 }  // namespace mo2d::cli

@@ -23,6 +23,7 @@ int main(int argc, char** argv) {  // NOLINT(bugprone-exception-escape)
   const std::vector<Command> commands = {
       add_demo_command(app),    add_info_command(app),   add_inverse_command(app),
       add_forward_command(app), add_render_command(app), add_crosscheck_command(app),
+      add_sweep_command(app),
   };
   try {
     app.parse(argc, argv);
