@@ -29,6 +29,8 @@ def _parser():
     p.add_argument("--jobs", type=int, default=None, metavar="N",
                    help="worker processes of the local cluster (default: one per core); with "
                    "--jobs 0 the runs are a serial loop in this process")
+    p.add_argument("--batch", type=int, default=1, metavar="K",
+                   help="runs per Dask task (default 1; runs of a few ms go faster in batches)")
     p.add_argument("-o", "--output", default=None, metavar="OUT.csv",
                    help="output CSV (default: NAME_sweep.csv, NAME the scene's name)")
     return p
@@ -49,6 +51,8 @@ def sweep_main(argv):
             _parser().error(f"--set {s}: {e}")
     if args.jobs is not None and args.jobs < 0:
         _parser().error("--jobs must be >= 0")
+    if args.batch < 1:
+        _parser().error("--batch must be >= 1")
     try:
         scene = load_scene(args.scene)  # a scene that cannot be read: one error, no sweep
     except Error as e:
@@ -63,7 +67,7 @@ def sweep_main(argv):
     output = args.output or f"{name}_sweep.csv"
     start = time.perf_counter()
     table = _sweep.sweep(args.scene, axes, solve=args.solve, jobs=args.jobs or None,
-                         scheduler=args.scheduler, serial=args.jobs == 0)
+                         scheduler=args.scheduler, serial=args.jobs == 0, batch=args.batch)
     seconds = time.perf_counter() - start
     _sweep.rows_to_csv(table, output)
     rows = table.to_dict("records") if hasattr(table, "to_dict") else table

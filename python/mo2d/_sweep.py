@@ -69,20 +69,26 @@ def _is_seq(v):
     return not isinstance(v, str) and hasattr(v, "__len__")
 
 
-def _peak(values):
-    return float(max(abs(v) for v in values)) if len(values) else 0.0
+def _peaks(matrix):
+    """max |value| of every column (samples x columns), as floats."""
+    import numpy
+
+    if matrix.shape[0] == 0:
+        return numpy.zeros(matrix.shape[1])
+    return numpy.abs(matrix).max(axis=0)
 
 
 def run_one(scene_path, params, solve=None, summary=None):
     """One run of the sweep (a Dask task; also the serial loop): a dict with the parameters,
-    ok, error, element, cpu_seconds, wall_seconds, peak.<effort label>, peak.reaction (largest
+    ok, error, element, cpu_seconds (the solver's), wall_seconds and task_cpu_seconds (the whole
+    task: load, build, run, this row), peak.<effort label>, peak.reaction (largest
     |reaction component| and its label), max.<residual label>, warnings and the summary's
     entries."""
     import mo2d  # in the worker process
 
     row = dict(params)
     row.update(ok=False, error="", element="")
-    start = time.perf_counter()
+    start, cpu = time.perf_counter(), time.process_time()
     try:
         scene = mo2d.load_scene(scene_path, set=params)
         kind = solve or scene.solve
@@ -91,15 +97,16 @@ def run_one(scene_path, params, solve=None, summary=None):
         r = mo2d.inverse(scene) if kind == "inverse" else mo2d.forward(scene)
         row["solve"] = kind
         row["cpu_seconds"] = r.cpu_seconds
-        for k, label in enumerate(r.effort_labels):
-            row["peak." + label] = _peak(r.efforts[:, k])
-        if len(r.reaction_labels):
-            peaks = [_peak(r.reactions[:, k]) for k in range(len(r.reaction_labels))]
-            k = max(range(len(peaks)), key=peaks.__getitem__)
-            row["peak.reaction"] = peaks[k]
+        # each property is a copy of a matrix: read once, peaks with NumPy
+        for label, peak in zip(r.effort_labels, _peaks(r.efforts)):
+            row["peak." + label] = float(peak)
+        reactions = _peaks(r.reactions)
+        if len(reactions):
+            k = int(reactions.argmax())
+            row["peak.reaction"] = float(reactions[k])
             row["peak.reaction.label"] = r.reaction_labels[k]
-        for k, label in enumerate(r.residual_labels):
-            row["max." + label] = _peak(r.residuals[:, k])
+        for label, peak in zip(r.residual_labels, _peaks(r.residuals)):
+            row["max." + label] = float(peak)
         row["warnings"] = len(r.warnings)
         if summary is not None:
             row.update(summary(r))
@@ -110,7 +117,13 @@ def run_one(scene_path, params, solve=None, summary=None):
     except Exception as e:  # a failed run is a row, never the end of the sweep
         row["error"] = f"{type(e).__name__}: {e}"
     row["wall_seconds"] = time.perf_counter() - start
+    row["task_cpu_seconds"] = time.process_time() - cpu
     return row
+
+
+def run_batch(scene_path, samples, solve=None, summary=None):
+    """Several runs in one task (sweep's batch > 1): their rows, in order."""
+    return [run_one(scene_path, s, solve, summary) for s in samples]
 
 
 def _failed(params, message):
@@ -121,7 +134,8 @@ def _failed(params, message):
 
 def _column_order(rows, names):
     """Parameters first, then ok/error, then the rest in order of first appearance."""
-    first = list(names) + ["ok", "error", "element", "solve", "cpu_seconds", "wall_seconds"]
+    first = list(names) + ["ok", "error", "element", "solve", "cpu_seconds", "wall_seconds",
+                           "task_cpu_seconds"]
     seen = list(first)
     for r in rows:
         for k in r:
@@ -141,7 +155,7 @@ def _table(rows, names):
 
 
 def sweep(scene, grid_or_samples, solve=None, summary=None, client=None, jobs=None,
-          scheduler=None, serial=False):
+          scheduler=None, serial=False, batch=1):
     """Solve the scene file `scene` for every parameter set and return one row per run.
 
     grid_or_samples: {"m": [1, 2], "L": [0.5, 1]} (every combination), a list of dicts
@@ -153,10 +167,14 @@ def sweep(scene, grid_or_samples, solve=None, summary=None, client=None, jobs=No
     client: a dask.distributed.Client; None: a LocalCluster of `jobs` single-threaded worker
         processes (default: one per core), or the scheduler at `scheduler` ("tcp://host:8786").
     serial: run in this process without Dask (the reference loop of docs/sweeps.md).
+    batch: runs per task (default 1: one model per task). Runs of a few milliseconds are cheaper
+        in batches (docs/sweeps.md: Dask's cost per task); a batch whose worker dies reports all
+        its runs as failed.
 
     Returns a pandas DataFrame (a list of dicts without pandas), rows in the order of the
     parameter sets: the parameters, ok, error (the mo2d.Error message of a failed run), element,
-    solve, cpu_seconds, wall_seconds, peak.<effort label> (max |effort|), peak.reaction and
+    solve, cpu_seconds (the solver's CPU time), wall_seconds and task_cpu_seconds (the whole task:
+    load, build, run), peak.<effort label> (max |effort|), peak.reaction and
     peak.reaction.label (largest |reaction component|), max.<residual label>, warnings (count)
     and the summary's columns.
     """
@@ -184,17 +202,20 @@ def sweep(scene, grid_or_samples, solve=None, summary=None, client=None, jobs=No
                 own.append(cluster)
                 client = Client(cluster)
             own.insert(0, client)
+        if batch < 1:
+            raise ValueError("sweep: batch must be at least 1")
+        chunks = [samples[k:k + batch] for k in range(0, len(samples), batch)]
         # pure=False: a run is not cached by its arguments; retries=0: a killed worker's run is
         # reported, not retried on every other worker
-        futures = [client.submit(run_one, scene, s, solve, summary, pure=False, retries=0)
-                   for s in samples]
+        futures = [client.submit(run_batch, scene, c, solve, summary, pure=False, retries=0)
+                   for c in chunks]
         wait(futures)
         rows = []
-        for s, f in zip(samples, futures):
+        for c, f in zip(chunks, futures):
             try:
-                rows.append(f.result())
+                rows.extend(f.result())
             except Exception as e:  # the worker died (KilledWorker) or the task could not run
-                rows.append(_failed(s, f"{type(e).__name__}: {e}"))
+                rows.extend(_failed(s, f"{type(e).__name__}: {e}") for s in c)
         return _table(rows, names)
     finally:
         for x in own:

@@ -34,6 +34,7 @@ def test_sweep_on_a_local_cluster_of_two_workers(mechanisms):
                       dashboard_address=None) as cluster, Client(cluster) as client:
         table = mo2d.sweep(mechanisms / "pendulum.yaml", grid, summary=peak_angle, client=client)
         assert len(client.scheduler_info()["workers"]) == 2
+        batched = mo2d.sweep(mechanisms / "pendulum.yaml", grid, client=client, batch=4)
     serial = mo2d.sweep(mechanisms / "pendulum.yaml", grid, summary=peak_angle, serial=True)
     rows = table.to_dict("records") if hasattr(table, "to_dict") else table
     assert [(r["m"], r["L"]) for r in rows] == [(m, L) for m in grid["m"] for L in grid["L"]]
@@ -48,6 +49,9 @@ def test_sweep_on_a_local_cluster_of_two_workers(mechanisms):
         assert r["max.residual.position"] < 1e-9
         assert r["max_angle"] == pytest.approx(4 + 0.5 * math.sin(6), rel=1e-12)
         assert r["cpu_seconds"] > 0 and r["solve"] == "inverse"
+    assert list(batched["peak.pivot.torque"].fillna(-1)) == list(
+        table["peak.pivot.torque"].fillna(-1))  # batches of 4 runs per task: the same rows
+    assert list(batched["ok"]) == list(table["ok"])
     # the torque scales with m at fixed L: rows (1, L) and (2, L)
     assert rows[2]["peak.pivot.torque"] == pytest.approx(2 * rows[0]["peak.pivot.torque"])
 
