@@ -25,6 +25,7 @@ struct Block {
 
 std::vector<std::string> dotted(const std::vector<std::string>& labels) {
   std::vector<std::string> out;
+  out.reserve(labels.size());
   for (const auto& l : labels) out.push_back(l + ".dot");
   return out;
 }

@@ -51,6 +51,8 @@ void bind_errors(py::module_& m) {
   cls.attr("line") = py::int_(0);
   cls.attr("column") = py::int_(0);
   m.add_object("Error", cls);
+  // by value: pybind11's translator type is void (*)(std::exception_ptr)
+  // NOLINTNEXTLINE(performance-unnecessary-value-param)
   py::register_exception_translator([](std::exception_ptr p) {
     try {
       if (p) std::rethrow_exception(p);
