@@ -23,5 +23,6 @@ Command add_crosscheck_command(CLI::App& app);
 Command add_plot_command(CLI::App& app);
 Command add_modes_command(CLI::App& app);      // cmd_modes.cpp
 Command add_linearize_command(CLI::App& app);  // cmd_modes.cpp
+Command add_sweep_command(CLI::App& app);
 
 }  // namespace mo2d::cli

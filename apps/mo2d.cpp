@@ -24,9 +24,10 @@ int main(int argc, char** argv) {  // NOLINT(bugprone-exception-escape)
   app.fallthrough(false);
   app.set_version_flag("--version", "mo2d " MO2D_VERSION);
   const std::vector<Command> commands = {
-      add_demo_command(app),    add_info_command(app),      add_inverse_command(app),
-      add_forward_command(app), add_render_command(app),    add_crosscheck_command(app),
-      add_plot_command(app),    add_modes_command(app),     add_linearize_command(app),
+      add_demo_command(app),    add_info_command(app),   add_inverse_command(app),
+      add_forward_command(app), add_render_command(app), add_crosscheck_command(app),
+      add_plot_command(app),    add_modes_command(app),  add_linearize_command(app),
+      add_sweep_command(app),
   };
   if (argc <= 1) {  // a bare mo2d: what it can do, nothing run or written
     std::fputs(app.help().c_str(), stdout);

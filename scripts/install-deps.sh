@@ -18,6 +18,15 @@ packages=(
   libcli11-dev               # CLI11 2.1 (header-only): the mo2d command line
   nlohmann-json3-dev         # nlohmann-json 3.11 (header-only): JSON run summaries of mo2d
   clang-format clang-tidy    # LLVM 14: scripts/check-style.sh (.clang-format, .clang-tidy)
+  pybind11-dev               # pybind11 2.10 (CMake config): the Python module mo2d (python/)
+  python3-dev                # Python.h and libpython of Debian's python3 3.11: the module's build
+  python3-pybind11           # pybind11's Python side (pybind11.get_cmake_dir, its headers)
+  python3-numpy              # NumPy 1.24: results as arrays (r.t, r.efforts)
+  python3-pytest             # pytest 7.2: tests/python (run from ctest)
+  python3-dask               # Dask 2022.12: mo2d.sweep, mo2d sweep
+  python3-distributed        # dask.distributed 2022.12: LocalCluster, Client, dask scheduler/worker
+  python3-pandas             # pandas 1.5: Result.to_pandas(), the table of a sweep
+  python3-matplotlib         # matplotlib 3.6: the example script of docs/python.md (Agg backend)
 )
 
 missing=()

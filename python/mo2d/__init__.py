@@ -1,0 +1,89 @@
+"""mo2d: dynamics of planar mechanisms in Orsino's nodal formulation (docs/python.md).
+
+Scene files::
+
+    import mo2d
+    scene = mo2d.load_scene("mechanisms/fourbar.yaml", set={"a": 0.12})
+    r = mo2d.inverse(scene)
+    r.t, r["crank_pivot.torque"], r.efforts, r.reactions, r.stats["cpu_seconds"]
+    r.to_pandas()                       # when pandas is installed
+
+Mechanisms built in Python: mo2d.System, mo2d.build_model, mo2d.inverse_dynamics,
+mo2d.forward_dynamics, loads as numbers, expression strings, callables or mo2d.Law(labels, f).
+Parameter sweeps on Dask: mo2d.sweep (mo2d/_sweep.py; command line: python3 -m mo2d sweep). Every error is a mo2d.Error.
+"""
+
+from . import _mo2d
+from ._mo2d import (  # noqa: F401  (the public API)
+    Error,
+    Law,
+    Model,
+    Result,
+    Scene,
+    State,
+    System,
+    build_model,
+    consistent_state,
+    crosscheck,
+    crosscheck_forward,
+    crosscheck_inverse,
+    forward,
+    forward_dynamics,
+    inverse,
+    inverse_dynamics,
+    write_filmstrip,
+    write_frame,
+    write_plot,
+    write_series_plot,
+)
+
+__all__ = [
+    "Error", "Law", "Model", "Result", "Scene", "State", "System", "build_model",
+    "consistent_state", "crosscheck", "crosscheck_forward", "crosscheck_inverse", "forward",
+    "forward_dynamics", "inverse", "inverse_dynamics", "load_scene", "parse_scene", "sweep",
+    "write_filmstrip", "write_frame", "write_plot", "write_series_plot",
+]
+
+
+def _overrides(set):
+    """{"m": 2.0, "L": "2*a"} -> [("m", "2.0"), ("L", "2*a")]: numbers in their shortest exact
+    form (repr), strings as expressions of the other parameters."""
+    if set is None:
+        return []
+    items = set.items() if hasattr(set, "items") else set
+    out = []
+    for name, value in items:
+        if isinstance(value, str):
+            out.append((str(name), value))
+        else:
+            out.append((str(name), repr(float(value))))
+    return out
+
+
+def load_scene(path, set=None):
+    """Read and check a scene file (docs/scene-format.md); set={"name": value} overrides its
+    parameters like `mo2d inverse --set name=value`. Raises mo2d.Error (file:line:column)."""
+    return _mo2d._load_scene(str(path), _overrides(set))
+
+
+def parse_scene(text, file_name="<scene>", set=None):
+    """A scene from YAML text (errors name file_name:line:column)."""
+    return _mo2d._parse_scene(text, file_name, _overrides(set))
+
+
+def _to_pandas(self):
+    """The result as a pandas DataFrame, one column per label of r.columns (the CSV's)."""
+    import pandas
+
+    return pandas.DataFrame({label: self[label] for label in self.columns})
+
+
+Result.to_pandas = _to_pandas
+
+
+def sweep(scene, grid_or_samples, solve=None, summary=None, client=None, **kwargs):
+    """Run a scene file for many parameter sets on Dask, one model per task; see
+    mo2d._sweep.sweep for the arguments and the table it returns."""
+    from ._sweep import sweep as _sweep  # imports dask only when a sweep runs
+
+    return _sweep(scene, grid_or_samples, solve=solve, summary=summary, client=client, **kwargs)

@@ -1,0 +1,150 @@
+// Runs of a System built in Python: build_model, inverse and forward dynamics, consistent
+// states, the Box2D cross-checks. These keep the GIL (the model may call Python laws).
+#include <pybind11/eigen.h>
+#include <pybind11/stl.h>
+
+#include <map>
+#include <memory>
+#include <utility>
+
+#include "bindings.hpp"
+#include "crosscheck_dict.hpp"
+#include "laws.hpp"
+#include "mo2d/crosscheck.hpp"
+#include "mo2d/mo2d.hpp"
+
+namespace mo2d::py_bind {
+
+namespace {
+
+using Pairs = std::vector<std::pair<std::string, double>>;
+using Motions = std::vector<std::pair<std::string, py::object>>;  // coordinate -> s(t)
+
+Reduction to_reduction(const std::string& s) {
+  if (s == "flat") return Reduction::flat;
+  if (s == "subsystems") return Reduction::subsystems;
+  if (s == "none") return Reduction::none;
+  throw Error("reduction: 'flat', 'subsystems' or 'none', not '" + s + "'", "reduction");
+}
+
+Integrator to_integrator(const std::string& s) {
+  for (Integrator i : {Integrator::cvode_bdf, Integrator::cvode_adams, Integrator::rk4,
+                       Integrator::dopri5, Integrator::baumgarte})
+    if (s == to_string(i)) return i;
+  throw Error("integrator: cvode_bdf, cvode_adams, rk4, dopri5 or baumgarte, not '" + s + "'",
+              "integrator");
+}
+
+std::vector<Prescribed> to_motions(const Motions& motion, const Params& params) {
+  std::vector<Prescribed> out;
+  for (const auto& [c, v] : motion) out.push_back(to_motion(c, v, params));
+  return out;
+}
+
+// Efforts by input label ("crank_pivot.torque" -> law), ordered like Model::inputs.
+EffortLaws to_efforts(const Model& m, const std::vector<std::pair<std::string, py::object>>& e,
+                      const Params& params) {
+  EffortLaws out(m.inputs.size());
+  const auto labels = m.input_labels();
+  for (const auto& [label, v] : e) {
+    const auto at = std::find(labels.begin(), labels.end(), label);
+    if (at == labels.end()) throw Error("efforts: the model has no input '" + label + "'", label);
+    out[static_cast<std::size_t>(at - labels.begin())] = to_law(v, params);
+  }
+  return out;
+}
+
+Result inverse(const std::shared_ptr<Model>& model, const Motions& motion, double t0, double t1,
+               int samples, const Params& params, const std::string& complement) {
+  InverseOptions o;
+  o.t0 = t0;
+  o.t1 = t1;
+  o.samples = samples;
+  if (complement == "recursive")
+    o.complement = ComplementMethod::recursive;
+  else if (complement != "prescribed")
+    throw Error("complement: 'prescribed' or 'recursive', not '" + complement + "'");
+  return make_result(model, inverse_dynamics(*model, to_motions(motion, params), o));
+}
+
+Result forward(const std::shared_ptr<Model>& model, const State& initial, double t1, int samples,
+               const std::string& integrator, double rtol, double atol, double step,
+               const std::vector<std::pair<std::string, py::object>>& efforts, const Params& params,
+               double max_seconds) {
+  ForwardOptions o;
+  o.t0 = initial.t;
+  o.t1 = t1;
+  o.samples = samples;
+  o.integrator = to_integrator(integrator);
+  o.rtol = rtol;
+  o.atol = atol;
+  o.step = step;
+  o.max_seconds = max_seconds;
+  o.efforts = to_efforts(*model, efforts, params);
+  return make_result(model, forward_dynamics(*model, initial, o));
+}
+
+void bind_state(py::module_& m) {
+  py::class_<State>(m, "State", "A consistent state: t, q0 (coordinates), q1 (quasi-velocities)")
+      .def_readwrite("t", &State::t)
+      .def_readwrite("q0", &State::q0)
+      .def_readwrite("q1", &State::q1);
+  m.def(
+      "consistent_state",
+      [](const Model& model, const Pairs& positions, const Pairs& velocities, double t0) {
+        return consistent_state(model, {positions, velocities}, t0);
+      },
+      py::arg("model"), py::arg("positions") = Pairs{}, py::arg("velocities") = Pairs{},
+      py::arg("t0") = 0.0,
+      "positions held at the given values, the others assembled; exactly dof velocities given");
+}
+
+}  // namespace
+
+void bind_runs(py::module_& m) {
+  m.def(
+      "build_model",
+      [](const System& s, const std::string& reduction, bool assemble) {
+        BuildOptions b;
+        b.reduction = to_reduction(reduction);
+        b.assemble = assemble;
+        return std::make_shared<Model>(build_model(s, b));
+      },
+      py::arg("system"), py::arg("reduction") = "flat", py::arg("assemble") = true);
+  bind_state(m);
+  m.def("inverse_dynamics", &inverse, py::arg("model"), py::arg("motion"), py::arg("t0") = 0.0,
+        py::arg("t1") = 1.0, py::arg("samples") = 501, py::arg("params") = Params{},
+        py::arg("complement") = "prescribed",
+        "motion: [(coordinate, expression of t or callable -> (s, s', s''))], one per DOF");
+  m.def(
+      "forward_dynamics", &forward, py::arg("model"), py::arg("initial"), py::arg("t1"),
+      py::arg("samples") = 101, py::arg("integrator") = "cvode_bdf", py::arg("rtol") = 1e-8,
+      py::arg("atol") = 1e-10, py::arg("step") = 1e-3,
+      py::arg("efforts") = std::vector<std::pair<std::string, py::object>>{},
+      py::arg("params") = Params{}, py::arg("max_seconds") = kDefaultMaxSeconds,
+      "efforts: [(input label, law)]; integrator: cvode_bdf, cvode_adams, rk4, dopri5, baumgarte");
+  m.def(
+      "crosscheck_inverse",
+      [](const System& s, const Motions& motion, double t0, double t1, double step,
+         const Params& params) {
+        InverseOptions o;
+        o.t0 = t0;
+        o.t1 = t1;
+        CrosscheckOptions c;
+        c.step = step;
+        return crosscheck_dict(crosscheck_inverse(s, to_motions(motion, params), o, c));
+      },
+      py::arg("system"), py::arg("motion"), py::arg("t0") = 0.0, py::arg("t1") = 1.0,
+      py::arg("step") = 1.0 / 2000, py::arg("params") = Params{});
+  m.def(
+      "crosscheck_forward",
+      [](const Model& model, const State& initial, double t1, double step) {
+        CrosscheckOptions c;
+        c.step = step;
+        return crosscheck_dict(crosscheck_forward(model, initial, t1, c));
+      },
+      py::arg("model"), py::arg("initial"), py::arg("t1"), py::arg("step") = 1.0 / 2000,
+      "model built with reduction='none'");
+}
+
+}  // namespace mo2d::py_bind

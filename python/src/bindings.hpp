@@ -1,0 +1,40 @@
+#pragma once
+// The Python module mo2d._mo2d (pybind11): one bind_* function per part of the API, called in this
+// order by module.cpp. The pure-Python package python/mo2d/ re-exports it and adds the sweeps.
+//
+// Ownership: a Result keeps the Model it was computed with (shared_ptr), so a Python script may
+// render or query a result after dropping its model. Models built from a Python System may hold
+// Python callables (laws): every call that evaluates them keeps the GIL; the scene runs (no Python
+// code inside) release it.
+#include <pybind11/pybind11.h>
+
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "mo2d/model.hpp"
+#include "mo2d/trajectory.hpp"
+
+namespace mo2d::py_bind {
+
+namespace py = pybind11;
+
+// The result of a run with the model that produced it and the warnings of the build.
+struct Result {
+  std::shared_ptr<Model> model{};
+  Trajectory trajectory{};
+  std::vector<std::string> warnings{};  // build warnings (sketch), then the run's
+};
+
+// mo2d.Error (a subclass of Exception) and the translation of mo2d::Error, SceneError and
+// ExpressionError into it, with the attributes element, time, file, line, column.
+void bind_errors(py::module_& m);
+void bind_results(py::module_& m);  // Model, Result
+void bind_scene(py::module_& m);    // Scene, load_scene, inverse, forward, crosscheck
+void bind_system(py::module_& m);   // System, Law, Motion, build_model, runs
+void bind_render(py::module_& m);   // frames, filmstrips, plots to PNG/SVG/PDF
+
+// A Result from a finished run (adds the model's build warnings in front of the run's).
+Result make_result(std::shared_ptr<Model> model, Trajectory trajectory);
+
+}  // namespace mo2d::py_bind

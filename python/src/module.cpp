@@ -1,0 +1,79 @@
+// mo2d._mo2d: the compiled part of the Python package mo2d (python/mo2d/__init__.py re-exports
+// it). See docs/python.md.
+#include <cmath>
+#include <exception>
+#include <limits>
+
+#include "bindings.hpp"
+#include "mo2d/error.hpp"
+#include "mo2d/expression.hpp"
+#include "mo2d/scene.hpp"
+
+namespace mo2d::py_bind {
+
+namespace {
+
+// The class object of mo2d.Error, created once by bind_errors (lives as long as the module).
+PyObject* error_class = nullptr;
+
+// Raise mo2d.Error(message) with the element, time and (scene files) location of the error.
+void raise_error(const Error& e, const Location* where, int column) {
+  py::object cls = py::reinterpret_borrow<py::object>(error_class);
+  py::object instance = cls(e.what());
+  instance.attr("message") = py::str(e.what());
+  instance.attr("element") = py::str(e.element());
+  instance.attr("time") = py::float_(e.time());
+  if (where != nullptr) {
+    instance.attr("file") = py::str(where->file);
+    instance.attr("line") = py::int_(where->line);
+    instance.attr("column") = py::int_(where->column);
+  } else if (column > 0) {
+    instance.attr("column") = py::int_(column);
+  }
+  PyErr_SetObject(error_class, instance.ptr());
+}
+
+}  // namespace
+
+void bind_errors(py::module_& m) {
+  error_class = PyErr_NewExceptionWithDoc(
+      "mo2d.Error",
+      "An error of mo2d: the message names the element, the time of a run and, for scene files, "
+      "file:line:column. Attributes: message, element ('' if none), time (NaN outside a run), "
+      "file, line, column (scene and expression errors; '' and 0 otherwise).",
+      PyExc_Exception, nullptr);
+  if (error_class == nullptr) throw py::error_already_set();
+  py::object cls = py::reinterpret_borrow<py::object>(error_class);
+  cls.attr("message") = py::str("");
+  cls.attr("element") = py::str("");
+  cls.attr("time") = py::float_(std::numeric_limits<double>::quiet_NaN());
+  cls.attr("file") = py::str("");
+  cls.attr("line") = py::int_(0);
+  cls.attr("column") = py::int_(0);
+  m.add_object("Error", cls);
+  // by value: pybind11's translator type is void (*)(std::exception_ptr)
+  // NOLINTNEXTLINE(performance-unnecessary-value-param)
+  py::register_exception_translator([](std::exception_ptr p) {
+    try {
+      if (p) std::rethrow_exception(p);
+    } catch (const SceneError& e) {
+      raise_error(e, &e.where(), 0);
+    } catch (const ExpressionError& e) {
+      raise_error(e, nullptr, e.column());
+    } catch (const Error& e) {
+      raise_error(e, nullptr, 0);
+    }
+  });
+}
+
+}  // namespace mo2d::py_bind
+
+PYBIND11_MODULE(_mo2d, m) {
+  m.doc() = "mo2d: dynamics of planar mechanisms (compiled part; see docs/python.md)";
+  using namespace mo2d::py_bind;
+  bind_errors(m);
+  bind_results(m);
+  bind_scene(m);
+  bind_system(m);
+  bind_render(m);
+}
