@@ -52,12 +52,20 @@ void BM_Forward(benchmark::State& state, Case (*make)(), ForwardOptions o) {
 const ForwardOptions kRk4{.integrator = Integrator::rk4, .step = 4e-3};
 const ForwardOptions kDopri5{.integrator = Integrator::dopri5, .rtol = 1e-9, .atol = 1e-9};
 const ForwardOptions kBdf{.integrator = Integrator::cvode_bdf, .rtol = 1e-8, .atol = 1e-8};
+// the same with CVODE's difference quotients for the Newton matrix instead of the exact Jacobian
+const ForwardOptions kBdfDq{
+    .integrator = Integrator::cvode_bdf, .rtol = 1e-8, .atol = 1e-8, .exact_jacobian = false};
 
 BENCHMARK_CAPTURE(BM_Forward, double_fourbar_rk4_h4e - 3, &double_fourbar, kRk4)
     ->Unit(benchmark::kMillisecond);
 BENCHMARK_CAPTURE(BM_Forward, double_fourbar_dopri5_tol1e - 9, &double_fourbar, kDopri5)
     ->Unit(benchmark::kMillisecond);
 BENCHMARK_CAPTURE(BM_Forward, double_fourbar_bdf_tol1e - 8, &double_fourbar, kBdf)
+    ->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(BM_Forward, double_fourbar_bdf_dq_tol1e - 8, &double_fourbar, kBdfDq)
+    ->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(BM_Forward, fourbar_bdf_tol1e - 8, &fourbar, kBdf)->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(BM_Forward, fourbar_bdf_dq_tol1e - 8, &fourbar, kBdfDq)
     ->Unit(benchmark::kMillisecond);
 BENCHMARK_CAPTURE(BM_Forward, fourbar_rk4_h4e - 3, &fourbar, kRk4)->Unit(benchmark::kMillisecond);
 BENCHMARK_CAPTURE(BM_Forward, fourbar_dopri5_tol1e - 9, &fourbar, kDopri5)
