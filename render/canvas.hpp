@@ -4,11 +4,14 @@
 #include <cairo.h>
 
 #include <memory>
+#include <numbers>
 #include <string>
 
 #include "mo2d/render/image.hpp"
 
 namespace mo2d::detail {
+
+inline constexpr double kPi = std::numbers::pi;
 
 enum class Format { png, svg, pdf };
 // The format named by the extension of `path` (.png, .svg, .pdf); throws Error otherwise.

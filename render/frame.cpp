@@ -18,8 +18,6 @@ namespace detail {
 
 namespace {
 
-constexpr double kPi = std::numbers::pi;
-
 std::string format(const char* fmt, double v) {
   char buf[64];
   std::snprintf(buf, sizeof buf, fmt, v);

@@ -53,8 +53,6 @@ void plan_loads(FramePlan& p) {
 
 namespace {
 
-constexpr double kPi = std::numbers::pi;
-
 // A straight arrow from `from` along `e` (unit, pixels), `len` long, line width w.
 void arrow(cairo_t* cr, const Vec2& from, const Vec2& e, double len, double w, double head) {
   head = std::min(head, len);
