@@ -35,7 +35,7 @@ struct Slot {
   std::atomic<int> state{0};
   char path[kPathMax];
 };
-Slot g_slots[kSlots];
+constinit Slot g_slots[kSlots];  // zero-initialized bss: no page is touched at start-up
 static_assert(std::atomic<int>::is_always_lock_free);
 
 extern "C" void remove_temporaries_and_die(int sig) {
