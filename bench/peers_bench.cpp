@@ -1,0 +1,270 @@
+// mo2d beside MuJoCo and Box2D on the same mechanisms, measured in one run (performance issue,
+// docs/performance.md "Peers"). A plain program printing Markdown tables, not a Google Benchmark:
+// each row is one timed run of its own. Built only where MuJoCo is found (libmujoco-dev):
+//   cmake --build build --target mo2d_peers_bench && taskset -c 0 build/bench/mo2d_peers_bench
+// Options: --long adds the MuJoCo runs of 1.6 million steps (about 5 s each); --max-n N caps the
+// chain sizes of the second table (default 400; 1000 takes minutes: mo2d's dense model build).
+//
+// 1. IFToMM double four-bar, 10 s: error of the first crank tip at t = 10 s against the exact
+//    reference of shared/notes/peers.md (1-DOF parallelogram reduction, 40-digit arithmetic),
+//    against process CPU time of the run (model construction excluded).
+// 2. IFToMM N-four-bar (N + 1 cranks pivoted at x = 0 .. N, N couplers, 1 kg / 1 m uniform bars,
+//    gravity, crank tips at 1 m/s): CPU per step at h = 2e-3 (mo2d rk4: 4 evaluations and one
+//    projection; MuJoCo Euler: one mj_step; Box2D: one b2World::Step, 8 velocity and 3 position
+//    iterations), and the model construction time.
+//
+// MuJoCo's model: the same bars in the x-z plane, hinges about y, each coupler a child of its
+// left crank, the right end closed on the next crank's tip by a `connect` equality; contacts off;
+// Euler; the equality made as stiff as is stable at the step (solref time constant 2 h, critical
+// damping, solimp 0.9999): MuJoCo's constraints are soft, so this is its most accurate setting.
+// Measured: a time constant below 2 h (refsafe off) leaves the branch at every step tried here;
+// solimp 0.99999 or 0.999999 changes the errors by less than 1 %; 0.9 multiplies them by 3-30.
+#include <mujoco/mujoco.h>
+#include <unistd.h>
+
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <cstring>
+#include <ctime>
+#include <filesystem>
+#include <fstream>
+#include <functional>
+#include <sstream>
+#include <stdexcept>
+#include <string>
+
+#include "box2d_world.hpp"
+#include "mo2d/forward.hpp"
+#include "mo2d/kinematics.hpp"
+#include "mo2d/mo2d.hpp"
+
+namespace {
+
+using namespace mo2d;
+
+constexpr double kRefX = 0.328458111541, kRefY = 0.944518538179;  // B0(10 s), peers.md
+
+double cpu_seconds() {
+  timespec ts{};
+  clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &ts);
+  return static_cast<double>(ts.tv_sec) + 1e-9 * static_cast<double>(ts.tv_nsec);
+}
+
+// ---- the mechanism in mo2d
+// -----------------------------------------------------------------------
+System n_fourbar(int n) {
+  System s("fourbar_chain_" + std::to_string(n));
+  const double m = 1.0, L = 1.0, I = m * L * L / 12;
+  for (int k = 0; k <= n; ++k) {
+    const std::string c = "crank" + std::to_string(k), o = "O" + std::to_string(k);
+    s.add_ground_node(o, {double(k), 0.0});
+    s.add_body({.name = c,
+                .nodes = {{"O", {double(k), 0.0}}, {"B", {double(k), L}}},
+                .mass = m,
+                .inertia = I,
+                .com = CenterOfMass::between("O", "B", 0.5)});
+    s.add_revolute({.name = c + "_pivot", .node_a = "ground." + o, .node_b = c + ".O"});
+  }
+  for (int k = 0; k < n; ++k) {
+    const std::string cp = "coupler" + std::to_string(k + 1);
+    const std::string left = "crank" + std::to_string(k), right = "crank" + std::to_string(k + 1);
+    s.add_body({.name = cp,
+                .nodes = {{"A", {double(k), L}}, {"B", {double(k + 1), L}}},
+                .mass = m,
+                .inertia = I,
+                .com = CenterOfMass::between("A", "B", 0.5)});
+    s.add_revolute({.name = cp + "_left", .node_a = left + ".B", .node_b = cp + ".A"});
+    s.add_revolute({.name = cp + "_right", .node_a = right + ".B", .node_b = cp + ".B"});
+  }
+  s.set_gravity({0, -9.81});
+  return s;
+}
+
+State start_state(const Model& m) {
+  return consistent_state(m, {.positions = {}, .velocities = {{"crank0.w", -1.0}}});
+}
+
+// ---- the mechanism in MuJoCo
+// ----------------------------------------------------------------------
+std::string mjcf(int n, double h) {
+  std::ostringstream x;
+  x.precision(17);
+  x << "<mujoco model='fourbar_chain'>\n"
+    << "  <option timestep='" << h << "' integrator='Euler' gravity='0 0 -9.81'"
+    << " jacobian='" << (n > 10 ? "sparse" : "dense") << "'>\n"
+    << "    <flag contact='disable'/>\n  </option>\n"
+    << "  <default><equality solref='" << 2 * h << " 1' solimp='0.9999 0.9999 0.001'/></default>\n"
+    << "  <size njmax='" << 3 * n + 16 << "'/>\n"  // the equality rows: 3 per connect
+    << "  <worldbody>\n";
+  const char* rod =
+      "pos='0 0 0.5' mass='1' diaginertia='0.0833333333333333 0.0833333333333333 1e-9'";
+  for (int k = 0; k <= n; ++k) {
+    x << "    <body name='crank" << k << "' pos='" << k << " 0 0'>\n"
+      << "      <joint type='hinge' axis='0 1 0'/>\n"
+      << "      <inertial " << rod << "/>\n"
+      << "      <site name='tip" << k << "' pos='0 0 1'/>\n";
+    if (k < n)
+      x << "      <body name='coupler" << k + 1 << "' pos='0 0 1'>\n"
+        << "        <joint type='hinge' axis='0 1 0'/>\n"
+        << "        <inertial pos='0.5 0 0' mass='1' diaginertia='1e-9 0.0833333333333333 "
+           "0.0833333333333333'/>\n"
+        << "      </body>\n";
+    x << "    </body>\n";
+  }
+  x << "  </worldbody>\n  <equality>\n";
+  for (int k = 0; k < n; ++k)
+    x << "    <connect body1='coupler" << k + 1 << "' body2='crank" << k + 1
+      << "' anchor='1 0 0'/>\n";
+  x << "  </equality>\n</mujoco>\n";
+  return x.str();
+}
+
+struct MjRun {
+  mjModel* model = nullptr;
+  mjData* data = nullptr;
+  int tip0 = -1;
+  MjRun(int n, double h) {
+    const std::filesystem::path p = std::filesystem::temp_directory_path() /
+                                    ("mo2d_peers_" + std::to_string(::getpid()) + ".xml");
+    std::ofstream(p) << mjcf(n, h);
+    char err[1000] = "";
+    model = mj_loadXML(p.c_str(), nullptr, err, sizeof err);
+    std::filesystem::remove(p);
+    if (!model) throw std::runtime_error(std::string("MuJoCo: ") + err);
+    data = mj_makeData(model);
+    // crank tips at 1 m/s in +x: crank rates +1 about y; couplers stay horizontal (relative -1)
+    for (int k = 0; k < model->nv; ++k)
+      data->qvel[k] = (model->jnt_bodyid[k] % 2 == 1) ? 1.0 : -1.0;
+    tip0 = mj_name2id(model, mjOBJ_SITE, "tip0");
+    mj_forward(model, data);
+  }
+  ~MjRun() {
+    mj_deleteData(data);
+    mj_deleteModel(model);
+  }
+  MjRun(const MjRun&) = delete;
+  MjRun& operator=(const MjRun&) = delete;
+};
+
+// ---- table 1: double four-bar, error against CPU time
+// --------------------------------------------
+void speed_vs_error(bool long_runs) {
+  std::printf("\n### Double four-bar, 10 s: error of B0(10 s) against CPU time\n\n");
+  std::printf("| engine | setting | error | steps | CPU ms |\n|---|---|---|---|---|\n");
+  const Model m = build_model(n_fourbar(2));
+  const State st = start_state(m);
+  const int ix = m.coordinate("crank0.B.x"), iy = m.coordinate("crank0.B.y");
+  auto mo2d_row = [&](ForwardOptions o, const char* setting) {
+    o.t0 = 0;
+    o.t1 = 10;
+    o.samples = 2;
+    const Trajectory r = forward_dynamics(m, st, o);
+    const double e = std::hypot(r.q0(1, ix) - kRefX, r.q0(1, iy) - kRefY);
+    std::printf("| mo2d %s | %s | %.2e | %ld | %.2f |\n", to_string(o.integrator), setting, e,
+                r.stats.steps, 1e3 * r.stats.cpu_seconds);
+  };
+  mo2d_row({.integrator = Integrator::dopri5, .rtol = 3e-6, .atol = 3e-6}, "tol 3e-6");
+  mo2d_row({.integrator = Integrator::dopri5, .rtol = 1e-7, .atol = 1e-7}, "tol 1e-7");
+  mo2d_row({.integrator = Integrator::dopri5, .rtol = 1e-9, .atol = 1e-9}, "tol 1e-9");
+  mo2d_row({.integrator = Integrator::rk4, .step = 2e-3}, "h 2e-3");
+  mo2d_row({.integrator = Integrator::cvode_bdf, .rtol = 1e-8, .atol = 1e-8}, "tol 1e-8");
+  for (double h : {6.25e-3, 2e-3, 6.25e-4, 6.25e-5, 6.25e-6}) {
+    if (h < 1e-5 && !long_runs) continue;
+    MjRun r(2, h);
+    const long steps = std::lround(10.0 / h);
+    const double c0 = cpu_seconds();
+    for (long k = 0; k < steps; ++k) mj_step(r.model, r.data);
+    const double cpu = cpu_seconds() - c0;
+    const double* tip = r.data->site_xpos + 3 * r.tip0;  // x, y, z: mo2d's (x, y) is (x, z)
+    const double e = std::hypot(tip[0] - kRefX, tip[2] - kRefY);
+    std::printf("| MuJoCo %d.%d.%d Euler | h %g | %.2e | %ld | %.2f |\n", mj_version() / 100,
+                mj_version() / 10 % 10, mj_version() % 10, h, e, steps, 1e3 * cpu);
+  }
+}
+
+// ---- table 2: N-four-bar, cost per step
+// ----------------------------------------------------------
+double mo2d_step_cost(const Model& m, const State& st, int steps) {
+  ForwardOptions o{.integrator = Integrator::rk4, .step = 2e-3};
+  o.t0 = 0;
+  o.t1 = steps * 2e-3;
+  o.samples = 2;
+  const Trajectory r = forward_dynamics(m, st, o);
+  return r.stats.cpu_seconds / static_cast<double>(r.stats.steps);
+}
+
+double mujoco_step_cost(int n, int steps) {
+  MjRun r(n, 2e-3);
+  const double c0 = cpu_seconds();
+  for (int k = 0; k < steps; ++k) mj_step(r.model, r.data);
+  return (cpu_seconds() - c0) / steps;
+}
+
+double box2d_step_cost(const Model& m, const State& st, int steps) {
+  CrosscheckOptions o;
+  crosscheck_detail::Box2DWorld w = crosscheck_detail::build_box2d_world(m, st.q0, st.q1, o, false);
+  const double c0 = cpu_seconds();
+  for (int k = 0; k < steps; ++k) w.world->Step(2e-3f, 8, 3);
+  return (cpu_seconds() - c0) / steps;
+}
+
+template <class F>
+double timed(F&& f) {
+  const double c0 = cpu_seconds();
+  f();
+  return cpu_seconds() - c0;
+}
+
+void step_costs(int max_n) {
+  std::printf("\n### N-four-bar: CPU per step (h = 2e-3) and model construction\n\n");
+  std::printf(
+      "| N | mo2d rk4 step | MuJoCo step | Box2D step | mo2d / MuJoCo | mo2d build | MuJoCo "
+      "load |\n|---|---|---|---|---|---|---|\n");
+  for (int n : {2, 10, 40, 100, 400, 1000}) {
+    if (n > max_n) break;
+    Model m;
+    const double build = timed([&] { m = build_model(n_fourbar(n)); });
+    const State st = start_state(m);
+    // budget: mo2d's dense step grows as N^3 (about 74 ms at N = 100): one step past N = 100
+    const int steps = n <= 10 ? 200 : n <= 100 ? 5 : 1;
+    const double t_mo2d = n <= 400 ? mo2d_step_cost(m, st, steps) : NAN;
+    const double t_mj = mujoco_step_cost(n, n <= 100 ? 2000 : 200);
+    const double load = timed([&] { MjRun r(n, 2e-3); });
+    Model mb = build_model(n_fourbar(n), {.reduction = Reduction::none});
+    const double t_b2 = box2d_step_cost(mb, start_state(mb), n <= 100 ? 2000 : 200);
+    char mo2d_step[32] = "not run", ratio[32] = "";
+    if (std::isfinite(t_mo2d)) {
+      std::snprintf(mo2d_step, sizeof mo2d_step, "%.3g µs", 1e6 * t_mo2d);
+      std::snprintf(ratio, sizeof ratio, "%.3g", t_mo2d / t_mj);
+    }
+    std::printf("| %d | %s | %.3g µs | %.3g µs | %s | %.3g ms | %.3g ms |\n", n, mo2d_step,
+                1e6 * t_mj, 1e6 * t_b2, ratio, 1e3 * build, 1e3 * load);
+  }
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  std::setvbuf(stdout, nullptr, _IONBF, 0);
+  bool long_runs = false;
+  int max_n = 400;
+  for (int k = 1; k < argc; ++k) {
+    if (std::strcmp(argv[k], "--long") == 0)
+      long_runs = true;
+    else if (std::strcmp(argv[k], "--max-n") == 0 && k + 1 < argc)
+      max_n = std::atoi(argv[++k]);
+    else {
+      std::fprintf(stderr, "usage: mo2d_peers_bench [--long] [--max-n N]\n");
+      return 2;
+    }
+  }
+  try {
+    speed_vs_error(long_runs);
+    step_costs(max_n);
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "mo2d_peers_bench: %s\n", e.what());
+    return 1;
+  }
+  return 0;
+}
