@@ -33,7 +33,7 @@ constexpr int kSlots = 1024;
 constexpr std::size_t kPathMax = 4096;
 struct Slot {
   std::atomic<int> state{0};
-  char path[kPathMax];
+  char path[kPathMax]{};  // zero: the table is constant-initialized (bss)
 };
 constinit Slot g_slots[kSlots];  // zero-initialized bss: no page is touched at start-up
 static_assert(std::atomic<int>::is_always_lock_free);
