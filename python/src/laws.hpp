@@ -7,10 +7,11 @@
 //    (mo2d/expression.hpp); `t` is the time, names in `params` are constants, every other name is
 //    a label of the state, resolved by build_model (an unknown label is an Error naming it);
 //  - a callable f(t) of time, or mo2d.Law(labels, f) with f(x, t), x the tuple of the labels'
-//    values: called with floats, it returns a float. Its derivatives are not available (a Jet
-//    with zero derivatives is returned): mo2d reads only the value of a load law today
-//    (law_value in src/dynamics/laws.cpp), so loads and efforts are exact; prescribed motions,
-//    which need s, s' and s'', are expressions or callables returning the three.
+//    values: called with floats, it returns a float. Where mo2d asks for derivatives (the exact
+//    Jacobian of CVODE BDF and of linearization, mo2d/jacobian.hpp) they are central differences
+//    of the callable along the direction asked (along_curve in laws.cpp); values are exact.
+//    Prescribed motions, which need s, s' and s'', are expressions or callables returning the
+//    three.
 // A callable is called with the GIL held (runs of a System keep it); an exception it raises
 // propagates out of the run unchanged.
 #include <pybind11/pybind11.h>
