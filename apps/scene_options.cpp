@@ -46,6 +46,7 @@ constexpr RunFlag kInverseFlags[] = {
 constexpr RunFlag kForwardFlags[] = {
     {"integrator", "cvode_bdf, cvode_adams, rk4, dopri5 or baumgarte (run.integrator)"},
     {"formulation", "augmented_lagrangian, lagrange or null_space (run.formulation)"},
+    {"linear_algebra", "automatic, dense or sparse matrices of a forward run (run.linear_algebra)"},
     {"rtol", "relative tolerance of cvode_bdf, cvode_adams and dopri5 (run.rtol)"},
     {"atol", "absolute tolerance of cvode_bdf, cvode_adams and dopri5 (run.atol)"},
     {"step", "s, fixed step of rk4 and baumgarte (run.step)"},
@@ -63,7 +64,9 @@ void add_run_flags(CLI::App* app, SceneOptions& o, const RunFlag (&flags)[N]) {
            std::string(f.help) +
                "; replaces the scene's value (a number may be an expression of "
                "the parameters)")
-        ->type_name(key == "integrator" || key == "formulation" ? "NAME" : "VALUE");
+        ->type_name(key == "integrator" || key == "formulation" || key == "linear_algebra"
+                        ? "NAME"
+                        : "VALUE");
   }
 }
 

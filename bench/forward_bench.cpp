@@ -8,6 +8,7 @@
 #include "mo2d/forward.hpp"
 #include "mo2d/mechanisms.hpp"
 #include "mo2d/model.hpp"
+#include "n_fourbar.hpp"
 
 namespace {
 
@@ -69,6 +70,33 @@ BENCHMARK_CAPTURE(BM_Forward, fourbar_bdf_dq_tol1e - 8, &fourbar, kBdfDq)
     ->Unit(benchmark::kMillisecond);
 BENCHMARK_CAPTURE(BM_Forward, fourbar_rk4_h4e - 3, &fourbar, kRk4)->Unit(benchmark::kMillisecond);
 BENCHMARK_CAPTURE(BM_Forward, fourbar_dopri5_tol1e - 9, &fourbar, kDopri5)
+    ->Unit(benchmark::kMillisecond);
+
+// The N-four-bar (bench/n_fourbar.hpp), rk4 h = 2e-3 over 20 steps, dense against sparse linear
+// algebra: the crossover of LinearAlgebra::automatic (kSparseCrossover, docs/performance.md).
+void BM_NFourBar(benchmark::State& state) {
+  const int n = static_cast<int>(state.range(0));
+  const Model m = build_model(bench::n_fourbar(n));
+  const State s = consistent_state(m, {.positions = {}, .velocities = {{"crank0.w", -1.0}}});
+  ForwardOptions o{.integrator = Integrator::rk4, .step = 2e-3};
+  o.linear_algebra = state.range(1) ? LinearAlgebra::sparse : LinearAlgebra::dense;
+  o.t0 = 0;
+  o.t1 = 20 * 2e-3;
+  o.samples = 2;
+  long steps = 0, evals = 0;
+  for (auto _ : state) {
+    const Trajectory r = forward_dynamics(m, s, o);
+    benchmark::DoNotOptimize(r.q0.data());
+    steps += r.stats.steps;
+    evals += r.stats.rhs_evaluations;
+  }
+  state.counters["s/step"] = per_item(static_cast<double>(steps));
+  state.counters["s/eval"] = per_item(static_cast<double>(evals));
+  state.counters["n1+m1"] = m.n1 + m.m1;
+}
+BENCHMARK(BM_NFourBar)
+    ->ArgsProduct({{2, 5, 10, 20, 40, 100}, {0, 1}})
+    ->ArgNames({"N", "sparse"})
     ->Unit(benchmark::kMillisecond);
 
 }  // namespace

@@ -38,10 +38,12 @@
 #include "mo2d/forward.hpp"
 #include "mo2d/kinematics.hpp"
 #include "mo2d/mo2d.hpp"
+#include "n_fourbar.hpp"
 
 namespace {
 
 using namespace mo2d;
+using mo2d::bench::n_fourbar;
 
 constexpr double kRefX = 0.328458111541, kRefY = 0.944518538179;  // B0(10 s), peers.md
 
@@ -53,34 +55,6 @@ double cpu_seconds() {
 
 // ---- the mechanism in mo2d
 // -----------------------------------------------------------------------
-System n_fourbar(int n) {
-  System s("fourbar_chain_" + std::to_string(n));
-  const double m = 1.0, L = 1.0, I = m * L * L / 12;
-  for (int k = 0; k <= n; ++k) {
-    const std::string c = "crank" + std::to_string(k), o = "O" + std::to_string(k);
-    s.add_ground_node(o, {double(k), 0.0});
-    s.add_body({.name = c,
-                .nodes = {{"O", {double(k), 0.0}}, {"B", {double(k), L}}},
-                .mass = m,
-                .inertia = I,
-                .com = CenterOfMass::between("O", "B", 0.5)});
-    s.add_revolute({.name = c + "_pivot", .node_a = "ground." + o, .node_b = c + ".O"});
-  }
-  for (int k = 0; k < n; ++k) {
-    const std::string cp = "coupler" + std::to_string(k + 1);
-    const std::string left = "crank" + std::to_string(k), right = "crank" + std::to_string(k + 1);
-    s.add_body({.name = cp,
-                .nodes = {{"A", {double(k), L}}, {"B", {double(k + 1), L}}},
-                .mass = m,
-                .inertia = I,
-                .com = CenterOfMass::between("A", "B", 0.5)});
-    s.add_revolute({.name = cp + "_left", .node_a = left + ".B", .node_b = cp + ".A"});
-    s.add_revolute({.name = cp + "_right", .node_a = right + ".B", .node_b = cp + ".B"});
-  }
-  s.set_gravity({0, -9.81});
-  return s;
-}
-
 State start_state(const Model& m) {
   return consistent_state(m, {.positions = {}, .velocities = {{"crank0.w", -1.0}}});
 }
@@ -185,8 +159,9 @@ void speed_vs_error(bool long_runs) {
 
 // ---- table 2: N-four-bar, cost per step
 // ----------------------------------------------------------
-double mo2d_step_cost(const Model& m, const State& st, int steps) {
+double mo2d_step_cost(const Model& m, const State& st, int steps, LinearAlgebra la) {
   ForwardOptions o{.integrator = Integrator::rk4, .step = 2e-3};
+  o.linear_algebra = la;
   o.t0 = 0;
   o.t1 = steps * 2e-3;
   o.samples = 2;
@@ -219,27 +194,27 @@ double timed(F&& f) {
 void step_costs(int max_n) {
   std::printf("\n### N-four-bar: CPU per step (h = 2e-3) and model construction\n\n");
   std::printf(
-      "| N | mo2d rk4 step | MuJoCo step | Box2D step | mo2d / MuJoCo | mo2d build | MuJoCo "
-      "load |\n|---|---|---|---|---|---|---|\n");
+      "| N | mo2d rk4 step, dense | mo2d rk4 step, sparse | MuJoCo step | Box2D step | mo2d sparse "
+      "/ MuJoCo | mo2d build | MuJoCo load |\n|---|---|---|---|---|---|---|---|\n");
   for (int n : {2, 10, 40, 100, 400, 1000}) {
     if (n > max_n) break;
     Model m;
     const double build = timed([&] { m = build_model(n_fourbar(n)); });
     const State st = start_state(m);
-    // budget: mo2d's dense step grows as N^3 (about 74 ms at N = 100): one step past N = 100
+    // budget: the dense step grows as N^3 (about 74 ms at N = 100): one step past N = 100
     const int steps = n <= 10 ? 200 : n <= 100 ? 5 : 1;
-    const double t_mo2d = n <= 400 ? mo2d_step_cost(m, st, steps) : NAN;
+    const double t_dense = n <= 400 ? mo2d_step_cost(m, st, steps, LinearAlgebra::dense) : NAN;
+    const double t_sparse = mo2d_step_cost(m, st, n <= 100 ? 200 : 20, LinearAlgebra::sparse);
     const double t_mj = mujoco_step_cost(n, n <= 100 ? 2000 : 200);
     const double load = timed([&] { MjRun r(n, 2e-3); });
     Model mb = build_model(n_fourbar(n), {.reduction = Reduction::none});
     const double t_b2 = box2d_step_cost(mb, start_state(mb), n <= 100 ? 2000 : 200);
-    char mo2d_step[32] = "not run", ratio[32] = "";
-    if (std::isfinite(t_mo2d)) {
-      std::snprintf(mo2d_step, sizeof mo2d_step, "%.3g µs", 1e6 * t_mo2d);
-      std::snprintf(ratio, sizeof ratio, "%.3g", t_mo2d / t_mj);
-    }
-    std::printf("| %d | %s | %.3g µs | %.3g µs | %s | %.3g ms | %.3g ms |\n", n, mo2d_step,
-                1e6 * t_mj, 1e6 * t_b2, ratio, 1e3 * build, 1e3 * load);
+    char dense_step[32] = "not run";
+    if (std::isfinite(t_dense))
+      std::snprintf(dense_step, sizeof dense_step, "%.3g µs", 1e6 * t_dense);
+    std::printf("| %d | %s | %.3g µs | %.3g µs | %.3g µs | %.3g | %.3g ms | %.3g ms |\n", n,
+                dense_step, 1e6 * t_sparse, 1e6 * t_mj, 1e6 * t_b2, t_sparse / t_mj, 1e3 * build,
+                1e3 * load);
   }
 }
 

@@ -9,6 +9,7 @@ packages=(
   libgtest-dev               # GoogleTest: tests/
   libbenchmark-dev           # Google Benchmark: bench/
   libsundials-dev            # SUNDIALS 6.4: forward dynamics (CVODE)
+  libsuitesparse-dev         # SuiteSparse 5.12 (KLU): the sparse LU of forward dynamics
   libbox2d-dev               # Box2D 2.4.1: the cross-check (mo2d_box2d)
   libcairo2-dev              # Cairo 1.16: rendering (mo2d_render)
   zlib1g-dev                 # zlib: mo2d_render's PNG encoder (faster than Cairo's own writer)

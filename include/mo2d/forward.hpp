@@ -41,9 +41,19 @@ enum class Integrator {
                 // projection
 };
 enum class Formulation { augmented_lagrangian, lagrange, null_space };
+// The matrices of the accelerations, the projection and the reactions (docs/performance.md,
+// "Sparse engine"): dense (Schur complement with the constant M^-1, dense Cholesky and LU: the
+// fastest for small mechanisms), or sparse (constraint rows, mass matrix and the
+// augmented-Lagrangian matrix M + alpha A^T N^2 A as sparse matrices whose pattern is analysed
+// once, refactorized per evaluation: cost linear in the size of a chain). automatic: sparse where
+// it is available (the augmented Lagrangian with rk4, dopri5 or baumgarte) and the mechanism has
+// n1 + m1 >= kSparseCrossover variables and velocity rows, else dense.
+enum class LinearAlgebra { automatic, dense, sparse };
+inline constexpr int kSparseCrossover = 40;
 
 const char* to_string(Integrator i);
 const char* to_string(Formulation f);
+const char* to_string(LinearAlgebra a);
 
 // A consistent state (positions on psi = 0, velocities on A q1 = b).
 struct State {
@@ -78,6 +88,7 @@ struct ForwardOptions {
   double step = 1e-3;  // fixed step (rk4, baumgarte); shortened so that steps end on output times
   double baumgarte_alpha = 20.0;  // 1/s, velocity-constraint feedback of the baumgarte mode
   double penalty = 0;             // augmented Lagrangian alpha (0: chosen from the mass scale)
+  LinearAlgebra linear_algebra = LinearAlgebra::automatic;  // dense or sparse matrices (above)
   // cvode_bdf's Newton matrix from the exact derivatives of the accelerations (mo2d/jacobian.hpp);
   // false: CVODE's difference quotients of the right-hand side (for comparison)
   bool exact_jacobian = true;

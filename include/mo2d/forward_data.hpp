@@ -30,8 +30,10 @@
 namespace mo2d {
 
 namespace detail {
-class SmallLU;     // dense LU of the small systems of one evaluation (src/linalg/small_lu.hpp)
-struct SlotEntry;  // an entry of A owned by a body slot, for the reactions (src/dynamics/)
+class SmallLU;       // dense LU of the small systems of one evaluation (src/linalg/small_lu.hpp)
+class SparseEngine;  // the sparse path's matrices and factorizations
+                     // (src/forward/sparse_engine.hpp)
+struct SlotEntry;    // an entry of A owned by a body slot, for the reactions (src/dynamics/)
 }  // namespace detail
 
 struct ForwardData {
@@ -44,6 +46,10 @@ struct ForwardData {
 
   const Model& m;
   const ForwardOptions o;
+
+  // With sparse linear algebra (ForwardOptions::linear_algebra, uses_sparse) the dense matrices
+  // below (M, Minv, A, Psi, An, AMinv, G1, KKT, H, K, S, CtMC, M0, W0) stay empty: their sparse
+  // counterparts live in the engine (sparse_engine()), the vectors are the same.
 
   // ---- constant (written by init) --------------------------------------------------------------
   MatrixXd M;             // n1 x n1: reduced mass matrix (eq. 5.25-5.27)
@@ -156,8 +162,19 @@ struct ForwardData {
     return o.integrator != Integrator::cvode_adams && o.integrator != Integrator::baumgarte;
   }
   void row_scale_of(const MatrixXd& J, const VectorXd& d, VectorXd& out) const;
+  // The pieces the recorder and the integrators read, on either path: A and b at (t, q0);
+  // out = A q1 - b (with the A of the last fill); psi and pos_row_scale at (t, q0); out = M x;
+  // A at (t, q0) as a dense matrix (allocates: for the messages of singular configurations).
+  void fill_velocity_rows(double t, const VectorXd& q0);
+  void velocity_residual_into(const VectorXd& q1, VectorXd& out) const;
+  void fill_position_rows(double t, const VectorXd& q0);
+  void mass_times(const VectorXd& x, VectorXd& out) const;
+  MatrixXd dense_velocity_rows(double t, const VectorXd& q0) const;
+  // the sparse path's engine, or nullptr on the dense path
+  const detail::SparseEngine* sparse_engine() const { return sparse_.get(); }
 
  private:
+  std::unique_ptr<detail::SparseEngine> sparse_;
   std::unique_ptr<detail::SmallLU> lu_kkt_, lu_K_, lu_G1_;  // of KKT, K and G1
   std::vector<detail::SlotEntry> entries_;  // reactions: A entries attributed to body slots
 
@@ -168,6 +185,9 @@ struct ForwardData {
   void solve_formulation(double t, const VectorXd& q0);
   void evaluate_friction(double t, const VectorXd& q0, const VectorXd& q1);
   void reactions_at(double t, const VectorXd& q0, const VectorXd& q1);
+  void init_sparse();
+  void solve_sparse(double t, const VectorXd& q0);
+  void project_sparse(double t, VectorXd& q0, VectorXd& q1, double tol_pos, double tol_vel);
   void solve_augmented_lagrangian(double t, const VectorXd& q0);
   void solve_lagrange(double t, const VectorXd& q0);
   void solve_null_space(double t, const VectorXd& q0);
@@ -178,6 +198,11 @@ struct ForwardData {
   void choose_independent(const VectorXd& q0, double t);
   double note_conditioning(double t, const VectorXd& q0, double ratio);
 };
+
+// Whether a workspace for (m, o) uses the sparse linear algebra (ForwardOptions::linear_algebra).
+// Throws Error (element "linear_algebra") for sparse with an integrator or formulation that has
+// no sparse path.
+bool uses_sparse(const Model& m, const ForwardOptions& o);
 
 // The accelerations a1 at the state (t, q0, q1) under the efforts u (one per Model::inputs entry,
 // in order), by the formulation of data's options (ForwardOptions::formulation): the right-hand

@@ -48,12 +48,13 @@ struct RunSettings {
   double tolerance = 1e-12;  // inverse: position tolerance |psi|_inf relative to the model size
   Integrator integrator = Integrator::cvode_bdf;
   Formulation formulation = Formulation::augmented_lagrangian;
-  double rtol = 1e-8, atol = 1e-10;         // forward, CVODE
-  double step = 1e-3;                       // forward, fixed-step integrators
-  int max_steps = kDefaultMaxSteps;         // forward: step budget of the run
-  double max_seconds = kDefaultMaxSeconds;  // wall-clock budget of the run
-  double max_memory = kDefaultMaxMemory;    // bytes of dense matrices and results
-  bool csv = true, json = true;             // outputs
+  LinearAlgebra linear_algebra = LinearAlgebra::automatic;  // forward: dense or sparse matrices
+  double rtol = 1e-8, atol = 1e-10;                         // forward, CVODE
+  double step = 1e-3;                                       // forward, fixed-step integrators
+  int max_steps = kDefaultMaxSteps;                         // forward: step budget of the run
+  double max_seconds = kDefaultMaxSeconds;                  // wall-clock budget of the run
+  double max_memory = kDefaultMaxMemory;                    // bytes of dense matrices and results
+  bool csv = true, json = true;                             // outputs
 };
 
 // A label written in the scene (prescribed coordinate, initial value, effort) with its place, so
@@ -122,8 +123,8 @@ struct RunOverride {
   std::string value{};
 };
 inline constexpr const char* kRunOverrideKeys[] = {
-    "t0",   "duration", "samples", "tolerance", "integrator",  "formulation",
-    "rtol", "atol",     "step",    "max_steps", "max_seconds", "max_memory"};
+    "t0",   "duration", "samples",   "tolerance",   "integrator", "formulation",   "rtol",
+    "atol", "step",     "max_steps", "max_seconds", "max_memory", "linear_algebra"};
 std::string run_override_flag(const std::string& key);  // "max_steps" -> "--max-steps"
 
 // Read a scene file / text. Throws SceneError (file:line:column) on any problem.

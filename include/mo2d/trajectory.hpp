@@ -29,6 +29,7 @@ struct RunStats {
   double t_end = 0;                  // time reached
   double min_pivot_ratio = 1;        // smallest (sigma_min / sigma_max)^2 of A seen at output times
   double max_drift = 0;              // largest position drift at output times (see drift_tolerance)
+  bool sparse = false;               // forward runs: the sparse linear algebra was used
 };
 
 struct Trajectory {

@@ -47,6 +47,18 @@ const char* to_string(Formulation f) {
   return "?";
 }
 
+const char* to_string(LinearAlgebra a) {
+  switch (a) {
+    case LinearAlgebra::automatic:
+      return "automatic";
+    case LinearAlgebra::dense:
+      return "dense";
+    case LinearAlgebra::sparse:
+      return "sparse";
+  }
+  return "?";
+}
+
 using detail::fmt;
 using detail::Recorder;
 
@@ -213,8 +225,11 @@ bool fixed_step(Integrator i) {
 // its saved copy), and the recorded results: bytes, estimated from the sizes.
 double forward_memory_bytes(const Model& m, const ForwardOptions& o) {
   const double n0 = m.n0, n1 = m.n1, m0 = m.m0, m1 = m.m1;
-  double dense =
-      8 * n1 * n1 + 2 * (n1 + m1) * (n1 + m1) + 4 * m1 * n1 + 3 * m1 * m1 + 3 * n0 * n0 + m0 * n0;
+  // the sparse path: the mass matrix is built column by column (n1 values at a time) and the
+  // factors of a chain are O(n); 64 entries per variable and row is a generous bound
+  double dense = uses_sparse(m, o) ? 64 * (n0 + n1 + m0 + m1)
+                                   : 8 * n1 * n1 + 2 * (n1 + m1) * (n1 + m1) + 4 * m1 * n1 +
+                                         3 * m1 * m1 + 3 * n0 * n0 + m0 * n0;
   if (o.integrator == Integrator::cvode_bdf) dense += 2 * (n0 + n1 + 2) * (n0 + n1 + 2);
   const double columns = n0 + 3 * n1 + m.n_inputs() + m.n_reactions() + 7;
   return 8 * (dense + static_cast<double>(o.samples) * columns);
@@ -283,6 +298,7 @@ Trajectory forward_dynamics(const Model& m, const State& initial, const ForwardO
   if (initial.q0.size() != m.n0 || initial.q1.size() != m.n1)
     throw Error("forward dynamics: the initial state does not match the model's variables", m.name);
   ForwardData d(m, o);
+  d.stats.sparse = d.sparse_engine() != nullptr;
   Trajectory r = detail::labelled_trajectory(m, RunKind::forward);
   const int N = o.samples;
   r.efforts = MatrixXd::Zero(N, m.n_inputs());

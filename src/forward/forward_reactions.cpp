@@ -7,6 +7,7 @@
 #include "dynamics/friction.hpp"
 #include "dynamics/reactions.hpp"
 #include "forward/forward_run.hpp"
+#include "forward/sparse_engine.hpp"
 #include "mo2d/dynamics.hpp"
 #include "mo2d/error.hpp"
 #include "mo2d/forward_data.hpp"
@@ -25,17 +26,24 @@ void ForwardData::compute_reactions(double t, const VectorXd& q0, const VectorXd
 // The reactions at the accelerations a with the efforts u and the friction values: least-squares
 // multipliers of A^T lambda = B u + (friction) - (M a - f), split at the eliminated joints.
 void ForwardData::reactions_at(double t, const VectorXd& q0, const VectorXd& q1) {
-  A.setZero();
-  entries_.clear();
-  detail::SlotRecordSink sink{A, m, entries_};
-  for (const auto& k : m.constraints) detail::velocity_rows(m, k, q0, t, b, sink);
+  if (sparse_) {
+    sparse_->fill_velocity_slots(q0, t, b, entries_);
+  } else {
+    A.setZero();
+    entries_.clear();
+    detail::SlotRecordSink sink{A, m, entries_};
+    for (const auto& k : m.constraints) detail::velocity_rows(m, k, q0, t, b, sink);
+  }
   body_inertia(m, a, la);
   body_applied(m, q0, q1, t, local);
   la -= local;  // M a - f, body-local
   w.setZero();
   if (!m.frictions.empty()) detail::add_friction_forces(m, friction, -1.0, true, la, w);
   scatter_local(m, la, w);
-  if (m.m1 > 0) {
+  if (m.m1 > 0 && sparse_) {
+    tmp0 = Bu - w;
+    sparse_->least_squares(tmp0, 1e-14, lam_ls);
+  } else if (m.m1 > 0) {
     lam_ls = regularized_normal_solve(A, Bu - w, 1e-14);
   }
   detail::joint_reactions(m, entries_, lam_ls, u, la, edge_force, edge_offset, reactions);

@@ -20,6 +20,7 @@
 #include "constraints/sinks.hpp"
 #include "dynamics/derivatives.hpp"
 #include "mo2d/dynamics.hpp"
+#include "mo2d/error.hpp"
 
 namespace mo2d {
 namespace {
@@ -86,6 +87,11 @@ bool direction_rhs(ForwardData& d, double t, const VectorXd& q0, const VectorXd&
 
 void acceleration_jacobian(ForwardData& d, double t, const VectorXd& q0, const VectorXd& q1,
                            AccelerationJacobian& J) {
+  if (d.sparse_engine())
+    throw Error("acceleration_jacobian of '" + d.m.name +
+                    "': the workspace uses sparse linear algebra; build it with "
+                    "ForwardOptions::linear_algebra = dense",
+                d.m.name, t);
   const Model& m = d.m;
   J.da_dq0.resize(m.n1, m.n0);
   J.da_dq1.resize(m.n1, m.n1);

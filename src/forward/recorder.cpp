@@ -13,13 +13,25 @@
 
 namespace mo2d::detail {
 
+namespace {
+
+// q1^T (M a - f - B u): the power of the constraint forces -A^T lambda
+double constraint_power(ForwardData& d, const VectorXd& q1) {
+  d.mass_times(d.a, d.tmp1);
+  d.tmp1 -= d.f;
+  d.tmp1 -= d.Bu;
+  return q1.dot(d.tmp1);
+}
+
+}  // namespace
+
 void energy_rates(ForwardData& d, double t, const VectorXd& q0, const VectorXd& q1, double* rates) {
   rates[kInputWork] = d.Bu.dot(q1);
   rates[kLoadWork] = load_power(d.m, q0, q1, t);
   // A time-dependent constraint (A q1 = b, b != 0) moves its bodies: its force -A^T lambda =
   // M a - f - B u does the work -lambda^T b. Zero (not evaluated) for fixed constraints.
   rates[kConstraintWork] =
-      d.m.m1 > 0 && d.b.lpNorm<Eigen::Infinity>() > 0 ? q1.dot(d.M * d.a - d.f - d.Bu) : 0.0;
+      d.m.m1 > 0 && d.b.lpNorm<Eigen::Infinity>() > 0 ? constraint_power(d, q1) : 0.0;
   rates[kDissipated] = damping_power(d.m, q0, q1);
   // joint friction (its values at this evaluation) dissipates -F v >= 0
   if (!d.m.frictions.empty()) rates[kDissipated] -= friction_power(d.m, d.friction, q1);
@@ -32,9 +44,8 @@ void energy_rates(ForwardData& d, double t, const VectorXd& q0, const VectorXd& 
 // its evaluations comes near one (below o.singular_warning).
 void Recorder::check_unprojected() {
   if (d.projects() || m.m1 == 0 || !(d.eval_min_ratio < d.o.singular_warning)) return;
-  velocity_jacobian(m, d.eval_min_q0, d.eval_min_t, d.A, d.b);
-  const SingularDirection s =
-      singular_direction(d.A, d.col_scale, m.velocity_row_labels, m.rate_labels);
+  const SingularDirection s = singular_direction(d.dense_velocity_rows(d.eval_min_t, d.eval_min_q0),
+                                                 d.col_scale, m.velocity_row_labels, m.rate_labels);
   throw Error("forward dynamics of '" + m.name + "': " + to_string(d.o.integrator) +
                   " does not project on the constraints and cannot pass the near-singular "
                   "configuration at t = " +
@@ -67,8 +78,9 @@ void Recorder::record(double t, const VectorXd& q0, const VectorXd& q1, const do
   VectorXd psi(m.m0);
   position_residual(m, q0, t, psi);
   r.residuals(k, 0) = m.m0 ? psi.lpNorm<Eigen::Infinity>() : 0.0;
-  velocity_jacobian(m, q0, t, d.A, d.b);
-  r.residuals(k, 1) = m.m1 ? (d.A * q1 - d.b).lpNorm<Eigen::Infinity>() : 0.0;
+  d.fill_velocity_rows(t, q0);
+  d.velocity_residual_into(q1, d.r1);
+  r.residuals(k, 1) = m.m1 ? d.r1.lpNorm<Eigen::Infinity>() : 0.0;
   check_drift(t, q0);
   const double piv = d.pivot_indicator(t, q0);
   d.stats.min_pivot_ratio = std::min(d.stats.min_pivot_ratio, piv);
@@ -78,8 +90,8 @@ void Recorder::record(double t, const VectorXd& q0, const VectorXd& q1, const do
     if (!near || piv < near_min) {
       near_min = piv;
       near_t = t;
-      const SingularDirection s =
-          singular_direction(d.A, d.col_scale, m.velocity_row_labels, m.rate_labels);
+      const SingularDirection s = singular_direction(d.dense_velocity_rows(t, q0), d.col_scale,
+                                                     m.velocity_row_labels, m.rate_labels);
       near_what = "; nearly dependent constraints " + s.rows + ", nearly undetermined motion of " +
                   s.variables;
     }
@@ -110,8 +122,7 @@ void Recorder::flush_near() {
 // constraint row (a warning, once, for the integrators that do not project).
 void Recorder::check_drift(double t, const VectorXd& q0) {
   if (m.m0 == 0 || drift_reported) return;
-  position_jacobian(m, q0, t, d.psi, d.Psi);
-  d.row_scale_of(d.Psi, d.pos_scale, d.pos_row_scale);
+  d.fill_position_rows(t, q0);
   double size = 0;
   for (int j = 0; j < m.n0; ++j)
     if (m.rate_refs[j].body >= 0) size = std::max(size, m.scale / d.pos_scale[j]);

@@ -278,10 +278,11 @@ void read_tables(Reader& r, const YAML::Node& node) {
 void read_run(const Reader& r, const YAML::Node& node, RunSettings& run,
               std::vector<std::pair<std::string, Location>>& elements) {
   if (!node.IsDefined() || node.IsNull()) return;
-  r.check_keys(node,
-               {"solve", "t0", "duration", "samples", "tolerance", "integrator", "formulation",
-                "rtol", "atol", "step", "outputs", "max_steps", "max_seconds", "max_memory"},
-               "run");
+  r.check_keys(
+      node,
+      {"solve", "t0", "duration", "samples", "tolerance", "integrator", "formulation", "rtol",
+       "atol", "step", "outputs", "max_steps", "max_seconds", "max_memory", "linear_algebra"},
+      "run");
   // where each run key is written: errors found when the run's options are checked against the
   // model (check_scene_options) are reported there
   for (const auto& [key, value] : r.entries(node, "run"))
@@ -340,6 +341,11 @@ void read_run(const Reader& r, const YAML::Node& node, RunSettings& run,
                             {{"augmented_lagrangian", Formulation::augmented_lagrangian},
                              {"lagrange", Formulation::lagrange},
                              {"null_space", Formulation::null_space}});
+  if (node["linear_algebra"].IsDefined())
+    run.linear_algebra = choice<LinearAlgebra>(r, node["linear_algebra"], "run.linear_algebra",
+                                               {{"automatic", LinearAlgebra::automatic},
+                                                {"dense", LinearAlgebra::dense},
+                                                {"sparse", LinearAlgebra::sparse}});
   if (node["outputs"].IsDefined()) {
     run.csv = run.json = false;
     for (const auto& o : node["outputs"].IsSequence() ? node["outputs"] : YAML::Node()) {

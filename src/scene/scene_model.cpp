@@ -177,6 +177,7 @@ ForwardOptions forward_options(const Scene& scene, const Model& model) {
   o.samples = scene.run.samples > 0 ? scene.run.samples : 101;
   o.integrator = scene.run.integrator;
   o.formulation = scene.run.formulation;
+  o.linear_algebra = scene.run.linear_algebra;
   o.rtol = scene.run.rtol;
   o.atol = scene.run.atol;
   o.step = scene.run.step;
