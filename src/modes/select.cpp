@@ -89,7 +89,8 @@ void choose_coordinates(const Model& m, const State& ref, const LinearizeOptions
                     " independent coordinates are needed, " +
                     std::to_string(ss.coordinate_vars.size()) + " given (" + given + ")",
                 m.name, ref.t);
-  if (selection_quality(N0, ss.coordinate_vars) < 1e-6)
+  const double position_quality = selection_quality(N0, ss.coordinate_vars);
+  if (position_quality < 1e-6)
     throw Error("linearization of '" + m.name + "': the coordinates " + given +
                     " do not parametrize the configurations near this one (the constraints tie "
                     "them); give instead e.g. " +
@@ -107,8 +108,10 @@ void choose_coordinates(const Model& m, const State& ref, const LinearizeOptions
     for (const auto& l : o.velocities) ss.velocity_vars.push_back(m.rate(l));
   }
   const std::string rates = join(m.rate_labels, ss.velocity_vars);
-  if (static_cast<int>(ss.velocity_vars.size()) != ss.dof ||
-      selection_quality(N1, ss.velocity_vars) < 1e-6)
+  const bool sized = static_cast<int>(ss.velocity_vars.size()) == ss.dof;
+  const double velocity_quality = sized ? selection_quality(N1, ss.velocity_vars) : 0.0;
+  ss.conditioning = std::min(position_quality, velocity_quality);
+  if (velocity_quality < 1e-6)
     throw Error("linearization of '" + m.name + "': the quasi-velocities " + rates + " are not " +
                     std::to_string(ss.dof) + " independent ones at this configuration",
                 m.name, ref.t);
