@@ -1,5 +1,6 @@
 // State-space export (mo2d/modes.hpp): each matrix as a labelled CSV, everything as one JSON
 // document. Written by the caller through OutputSet or write_file_atomically (atomic).
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <sstream>
@@ -149,6 +150,18 @@ void check_same_labels(const std::vector<StateSpace>& along) {
                   "states", ss.t);
 }
 
+// The distinct notes of what was differenced, over all samples.
+std::string approximate_notes(const std::vector<StateSpace>& along) {
+  std::vector<std::string> notes;
+  for (const StateSpace& ss : along)
+    if (!ss.approximate.empty() &&
+        std::find(notes.begin(), notes.end(), ss.approximate) == notes.end())
+      notes.push_back(ss.approximate);
+  std::string s;
+  for (const auto& n : notes) s += (s.empty() ? "" : " | ") + n;
+  return s;
+}
+
 }  // namespace
 
 std::string state_space_along_csv(const std::vector<StateSpace>& along, char matrix) {
@@ -176,7 +189,7 @@ std::string state_space_along_json(const std::vector<StateSpace>& along) {
   std::ostringstream s;
   s << "{\n  \"states\": " << labels_json(f.states) << ",\n  \"inputs\": " << labels_json(f.inputs)
     << ",\n  \"outputs\": " << labels_json(f.outputs)
-    << ",\n  \"approximate\": " << quoted(f.approximate) << ",\n  \"samples\": [";
+    << ",\n  \"approximate\": " << quoted(approximate_notes(along)) << ",\n  \"samples\": [";
   for (size_t k = 0; k < along.size(); ++k) {
     const StateSpace& ss = along[k];
     s << (k ? ",\n  {" : "\n  {") << "\"t\": " << num(ss.t, "t")
