@@ -163,8 +163,9 @@ double along_max_entry(const std::vector<MatrixXd>& phi) {
 //    estimated here by Richardson from the same samples (Phi with 2h: every other sample);
 //  - central differences, O(eps^2): c eps^2 with c = 18 / 140 (1.8e-7 / 1.4e-6 at eps = 1e-4,
 //    whatever h and rtol): 1.4e-8 at most at eps = 1e-5;
-//  - the solver's error, divided by eps: about 1.3e-13 / eps with dopri5 at rtol 1e-12 (1.3e-6 at
-//    eps = 1e-7, 8e-6 at rtol 1e-10): 1.3e-8 at eps = 1e-5 (eps = 1e-6 balances worse: 1.3e-7).
+//  - the solver's error, divided by eps (dopri5, rtol 1e-12, h = 0.5 ms): 5.4e-8 / 2.5e-8 at
+//    eps = 1e-6, 1.3e-6 / 2.5e-7 at eps = 1e-7 (at rtol 1e-10: 8e-7 at eps = 1e-6): at most
+//    5.4e-9 at eps = 1e-5, where the first choice, eps = 1e-6, balances worse.
 // So worst < 2 e_rk + 3e-8 (the last two terms, summed and rounded up).
 double along_bound(const std::vector<StateSpace>& along, const std::vector<MatrixXd>& phi, int p) {
   std::vector<StateSpace> coarse;
