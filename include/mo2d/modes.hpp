@@ -81,11 +81,13 @@ State chart_state(const Model& m, const StateSpace& ss, const Eigen::VectorXd& d
 Eigen::VectorXd independent_state(const StateSpace& ss, const State& s);
 
 // Linearization along a reference motion (Proposition 4.4 about a reference trajectory): one
-// StateSpace per state, all in the SAME independent coordinates (o's, or those chosen by
-// pivoting at the first state), so that dx/dt = G(t) x + H(t) u can be integrated along it (the
-// transition matrix: dPhi/dt = G(t) Phi). Coordinates are never switched on the way: where they
-// stop parametrizing the motion (conditioning below o.min_conditioning, or K0 = [Psi; E0],
-// K = [A; E] singular) it throws Error naming the time, the coordinates and better ones there.
+// StateSpace per state, all in the SAME independent coordinates (o's, or, among the choices of
+// the pivoting at each state, the one whose worst conditioning over the reference is the best;
+// the further quasi-velocities by pivoting at the first state), so that dx/dt = G(t) x + H(t) u can
+// be integrated along it (the transition matrix: dPhi/dt = G(t) Phi). Coordinates are never
+// switched on the way: where they stop parametrizing the motion (conditioning below
+// o.min_conditioning, or K0 = [Psi; E0], K = [A; E] singular) it throws Error naming the time, the
+// coordinates and better ones there.
 std::vector<StateSpace> linearize_along(const Model& m, const std::vector<State>& reference,
                                         const LinearizeOptions& o = {});
 // Along a run's samples: a forward run with o.forward.efforts the laws it ran with (checked: the

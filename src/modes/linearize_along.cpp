@@ -1,10 +1,11 @@
 // Linearization along a reference motion (mo2d/modes.hpp, docs/linearization.md): eq. 4.24 at
 // every state of the reference, x = (z, w) in ONE set of independent coordinates. z = E0 q0 and
 // w = E q1 are selections of labels; G(t) at two times is a derivative in the same variables only
-// when E0 and E are the same at both, so they are chosen once (at the first state, by pivoting,
-// or given) and checked at every state: the conditioning of the chart (the smallest singular
-// value of the selected rows of orthonormal tangent bases) must stay above
-// LinearizeOptions::min_conditioning, else an Error names the time and the coordinates.
+// when E0 and E are the same at both, so they are chosen once (given, or among the pivot's choices
+// at the states the one that stays best conditioned over all of them; the further
+// quasi-velocities by pivoting at the first state) and checked at every state: the conditioning of
+// the chart (the smallest singular value of the selected rows of orthonormal tangent bases) must
+// stay above LinearizeOptions::min_conditioning, else an Error names the time and the coordinates.
 #include <Eigen/QR>
 #include <algorithm>
 #include <cmath>
@@ -134,6 +135,9 @@ std::vector<StateSpace> linearize_along(const Model& m, const std::vector<State>
   std::vector<StateSpace> out;
   out.reserve(reference.size());
   LinearizeOptions fixed = o;
+  if (fixed.coordinates.empty() && !reference.empty())
+    for (int k : detail::coordinates_along(m, reference))
+      fixed.coordinates.push_back(m.coordinate_labels[k]);
   for (const State& s : reference) {
     out.push_back(along_step(m, s, fixed, out.empty() ? nullptr : &out.front()));
     if (out.size() == 1) fixed = fixed_options(m, out.front(), o);
@@ -182,6 +186,9 @@ std::vector<StateSpace> linearize_along(const Model& m, const Trajectory& r,
   // inverse run: its efforts held at each sample, the coordinates those of the first sample
   std::vector<StateSpace> out;
   LinearizeOptions held = o;
+  if (held.coordinates.empty() && !states.empty())
+    for (int k : detail::coordinates_along(m, states))
+      held.coordinates.push_back(m.coordinate_labels[k]);
   for (Eigen::Index i = 0; i < r.time.size(); ++i) {
     held.forward.efforts.clear();
     for (Eigen::Index k = 0; k < r.efforts.cols(); ++k)
