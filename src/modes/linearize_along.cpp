@@ -32,6 +32,12 @@ std::string time_text(double t) {
   return buf;
 }
 
+std::string short_number(double v) {
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%.3g", v);
+  return buf;
+}
+
 // The options with the coordinates and extra quasi-velocities of ss written out as labels.
 LinearizeOptions fixed_options(const Model& m, const StateSpace& ss, LinearizeOptions o) {
   o.coordinates.clear();
@@ -46,9 +52,9 @@ std::string pivot_choice(const Model& m, const State& s) {
   try {
     StateSpace ss;
     detail::choose_coordinates(m, s, {}, ss);
-    std::string s = joined(m.coordinate_labels, ss.coordinate_vars, 0, ss.p);
+    const std::string coords = joined(m.coordinate_labels, ss.coordinate_vars, 0, ss.p);
     const std::string extra = joined(m.rate_labels, ss.velocity_vars, ss.p, ss.dof);
-    return extra.empty() ? s : s + "; " + extra;
+    return extra.empty() ? coords : coords + "; " + extra;
   } catch (const Error&) {
     return "";
   }
@@ -78,7 +84,7 @@ State chart_state(const Model& m, const StateSpace& ss, const VectorXd& dx) {
                     std::to_string(ss.n()),
                 m.name, ss.t);
   State s{ss.t, chart_positions(m, ss, dx.head(ss.p)), VectorXd()};
-  VectorXd psi(m.m0), b(m.m1);
+  VectorXd b(m.m1);
   MatrixXd K = MatrixXd::Zero(m.m1 + ss.dof, m.n1);
   velocity_jacobian(m, s.q0, ss.t, K.topRows(m.m1), b);
   VectorXd rhs(m.m1 + ss.dof);
@@ -153,7 +159,7 @@ void check_against_run(const Model& m, const Trajectory& r, Eigen::Index i, cons
   const double du = (ss.u - u).lpNorm<Eigen::Infinity>();
   if (u.size() == ss.u.size() && du > 1e-9 * (1 + u.lpNorm<Eigen::Infinity>()))
     throw Error("linearization along the run of '" + m.name + "': at t = " + time_text(ss.t) +
-                    " the efforts of the options differ from the run's by " + std::to_string(du) +
+                    " the efforts of the options differ from the run's by " + short_number(du) +
                     ": pass the laws the run used (LinearizeOptions::forward.efforts)",
                 m.name, ss.t);
   double da = 0, scale = 1;
@@ -164,7 +170,7 @@ void check_against_run(const Model& m, const Trajectory& r, Eigen::Index i, cons
   }
   if (da > 1e-6 * scale)
     throw Error("linearization along the run of '" + m.name + "': at t = " + time_text(ss.t) +
-                    " the accelerations differ from the run's by " + std::to_string(da) +
+                    " the accelerations differ from the run's by " + short_number(da) +
                     " (another model, loads or formulation than the run's?)",
                 m.name, ss.t);
 }
