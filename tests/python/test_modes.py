@@ -47,6 +47,13 @@ def test_pendulum_frequency_is_sqrt_g_over_l():
     np.testing.assert_allclose(ss.reference.q0, eq.state.q0)
     assert mo2d.modes(ss)[0].omega_n == pytest.approx(mode.omega_n, rel=1e-12)
     assert ss.shape(mode) == {"link.angle": pytest.approx(1.0)}
+    # a feedback effort (an expression of the state): the closed loop, zeta = c / (2 m L^2 omega)
+    c = 2.0
+    closed = mo2d.linearize(model, eq.state, coordinates=["link.angle"],
+                            efforts=[("pivot.torque", "-2 * link.w")])
+    assert closed.G[1, 1] == pytest.approx(-c / (m * L * L), rel=1e-12)
+    assert closed.modes[0].damping_ratio == pytest.approx(
+        c / (2 * m * L * L * math.sqrt(G_ACC / L)), rel=1e-9)
 
 
 def test_sprung_double_pendulum_matches_the_cli_json(mechanisms, mo2d_cli, tmp_path):
