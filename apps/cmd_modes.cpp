@@ -7,8 +7,13 @@
 // mo2d linearize SCENE --at t=T [...]: the linearization about the scene's run at time T (the
 //   forward run from its initial state, or the inverse run with its efforts held), written as
 //   DIR/NAME_G.csv, _H.csv, _C.csv, _D.csv and _linearization.json (docs/linearization.md).
+// mo2d linearize SCENE --at t=A:B:N: along the run, at N equally spaced times from A to B, all in
+//   the same independent coordinates (linearize_along): DIR/NAME_G_along.csv (one row per time
+//   and state), _H_along.csv, _C_along.csv, _D_along.csv and _linearization_along.json.
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <stdexcept>
 #include <string>
 
 #include "command.hpp"
@@ -100,6 +105,34 @@ int modes(const ModesCliOptions& o) {
   return 0;
 }
 
+// --at t=A:B:N: N >= 2 times from A to B; {} for a single time.
+struct TimeRange {
+  double a = 0, b = 0;
+  int n = 0;
+};
+bool range_of(const std::string& at, TimeRange& r) {
+  if (at.rfind("t=", 0) != 0 || at.find(':') == std::string::npos) return false;
+  const std::string body = at.substr(2);
+  const size_t c1 = body.find(':'), c2 = body.find(':', c1 + 1);
+  if (c2 == std::string::npos || body.find(':', c2 + 1) != std::string::npos)
+    throw Error("--at: expected t=A:B:N (N times from A to B), got '" + at + "'", "--at");
+  try {
+    size_t ua = 0, ub = 0, un = 0;
+    const std::string sa = body.substr(0, c1), sb = body.substr(c1 + 1, c2 - c1 - 1),
+                      sn = body.substr(c2 + 1);
+    r.a = std::stod(sa, &ua);
+    r.b = std::stod(sb, &ub);
+    r.n = std::stoi(sn, &un);
+    if (ua != sa.size() || ub != sb.size() || un != sn.size()) throw std::invalid_argument(at);
+  } catch (const std::logic_error&) {
+    throw Error("--at: '" + at + "' is not t=A:B:N with numbers A < B and an integer N >= 2",
+                "--at");
+  }
+  if (!std::isfinite(r.a) || !std::isfinite(r.b) || !(r.a < r.b) || r.n < 2 || r.n > 100000)
+    throw Error("--at: '" + at + "' needs finite A < B and 2 <= N <= 100000", "--at");
+  return true;
+}
+
 double time_of(const std::string& at, double t0) {
   if (at.empty()) return t0;
   if (at.rfind("t=", 0) != 0) throw Error("--at: expected t=TIME, got '" + at + "'", "--at");
@@ -134,7 +167,10 @@ State reference_state(const Scene& s, const Model& m, double t, LinearizeOptions
   return {t, r.q0.row(i).transpose(), r.q1.row(i).transpose()};
 }
 
+int linearize_along_command(const ModesCliOptions& o, const TimeRange& tr);
+
 int linearize_command(const ModesCliOptions& o) {
+  if (TimeRange tr; range_of(o.at, tr)) return linearize_along_command(o, tr);
   const Scene scene = load_scene_with_overrides(o.scene);
   const Model model = build_model_of(scene);
   LinearizeOptions lo = linearize_options(o, scene, model);
@@ -149,6 +185,63 @@ int linearize_command(const ModesCliOptions& o) {
   for (char c : {'G', 'H', 'C', 'D'})
     out.add(output_path(o.scene, scene, std::string(1, c) + ".csv"), state_space_csv(ss, c));
   out.add(output_path(o.scene, scene, "linearization.json"), state_space_json(ss, ms));
+  out.commit();
+  for (const auto& p : out.paths()) std::printf("  wrote %s\n", p.c_str());
+  return 0;
+}
+
+// The scene's run sampled at the range's times: a forward scene's run to A, then from there with
+// N samples to B; an inverse scene's run from A to B (its efforts are held at each sample).
+Trajectory reference_run(const Scene& s, const Model& m, const TimeRange& tr) {
+  if (s.run.solve == Solve::forward) {
+    State start = initial_state(s, m);
+    ForwardOptions run = forward_options(s, m);
+    if (tr.a < run.t0) throw Error("--at: t = " + std::to_string(tr.a) + " is before t0", "--at");
+    if (tr.a > run.t0) {
+      ForwardOptions to_a = run;
+      to_a.t1 = tr.a;
+      to_a.samples = 2;
+      const Trajectory r = forward_dynamics(m, start, to_a);
+      start = {tr.a, r.q0.row(1).transpose(), r.q1.row(1).transpose()};
+    }
+    run.t0 = tr.a;
+    run.t1 = tr.b;
+    run.samples = tr.n;
+    return forward_dynamics(m, start, run);
+  }
+  InverseOptions run = inverse_options(s);
+  run.t0 = tr.a;
+  run.t1 = tr.b;
+  run.samples = tr.n;
+  return inverse_dynamics(m, s.motion, run);
+}
+
+int linearize_along_command(const ModesCliOptions& o, const TimeRange& tr) {
+  const Scene scene = load_scene_with_overrides(o.scene);
+  const Model model = build_model_of(scene);
+  const LinearizeOptions lo = linearize_options(o, scene, model);
+  const Trajectory r = reference_run(scene, model, tr);
+  const std::vector<StateSpace> along = linearize_along(model, r, lo);
+  const StateSpace& f = along.front();
+  std::printf(
+      "mo2d linearize: %s along its run, %d times from t = %g to %g s (%d states, %d "
+      "inputs, %d outputs)\n  states: ",
+      model.name.c_str(), tr.n, tr.a, tr.b, f.n(), static_cast<int>(f.inputs.size()),
+      static_cast<int>(f.outputs.size()));
+  for (size_t i = 0; i < f.states.size(); ++i)
+    std::printf("%s%s", i ? ", " : "", f.states[i].c_str());
+  double worst = 1, largest = 0;
+  for (const StateSpace& ss : along) {
+    worst = std::min(worst, ss.conditioning);
+    largest = std::max(largest, ss.G.cwiseAbs().maxCoeff());
+  }
+  std::printf("\n  conditioning of the coordinates >= %.3g, largest |G| entry %.6g\n", worst,
+              largest);
+  OutputSet out;
+  for (char c : {'G', 'H', 'C', 'D'})
+    out.add(output_path(o.scene, scene, std::string(1, c) + "_along.csv"),
+            state_space_along_csv(along, c));
+  out.add(output_path(o.scene, scene, "linearization_along.json"), state_space_along_json(along));
   out.commit();
   for (const auto& p : out.paths()) std::printf("  wrote %s\n", p.c_str());
   return 0;
@@ -185,7 +278,9 @@ Command add_linearize_command(CLI::App& app) {
   CLI::App* sub = app.add_subcommand(
       "linearize", "State-space model dx/dt = G x + H u, y = C x + D u about the run at a time");
   add_common(sub, *o);
-  sub->add_option("--at", o->at, "t=TIME on the scene's run (default: its start)");
+  sub->add_option("--at", o->at,
+                  "t=TIME on the scene's run (default: its start), or t=A:B:N: N times from A "
+                  "to B along it, in the same coordinates");
   return {sub, [o] { return linearize_command(*o); }};
 }
 

@@ -40,6 +40,9 @@ struct LinearizeOptions {
   std::vector<std::string> outputs{};
   // Efforts (one law per input; feedback laws make G the closed loop), formulation, penalty.
   ForwardOptions forward{};
+  // linearize_along: the smallest StateSpace::conditioning accepted along the reference (below
+  // it the fixed coordinates stop parametrizing the motion well: an Error naming the time).
+  double min_conditioning = 1e-3;
 };
 
 // The linear model dx/dt = G x + H u, y = C x + D u about a reference, with its labels.
@@ -56,6 +59,10 @@ struct StateSpace {
   Eigen::MatrixXd dq1_dw;      // n1 x dof: basis of the velocities (C of Theorem 2.8)
   Eigen::MatrixXd dq1_dz;      // n1 x p: the velocities' change with the position at fixed w
   std::string approximate;     // what was differenced (acceleration_jacobian's note and ours)
+  // How well the selected coordinates and quasi-velocities parametrize the state here: the
+  // smaller of the smallest singular values of the selected rows of orthonormal bases of the two
+  // tangent spaces (dimensionless columns): 1 ideal, 0 where the chart is singular.
+  double conditioning = 1;
   int n() const { return p + dof; }
 };
 
@@ -66,6 +73,28 @@ StateSpace linearize(const Model& m, const State& reference, const LinearizeOpti
 // The configuration q0(z) of the chart of ss: positions assembled with the independent
 // coordinates at ss's values plus dz (Error if there is none, naming the coordinates).
 Eigen::VectorXd chart_positions(const Model& m, const StateSpace& ss, const Eigen::VectorXd& dz);
+
+// The consistent state of ss's chart at x* + dx (dx: n = p + dof): positions q0(z* + dz), then
+// velocities from [A(q0); E] q1 = [b; w* + dw]. Error if there is none (naming the coordinates).
+State chart_state(const Model& m, const StateSpace& ss, const Eigen::VectorXd& dx);
+// The independent state x = (E0 q0, E q1) of a state s in ss's coordinates.
+Eigen::VectorXd independent_state(const StateSpace& ss, const State& s);
+
+// Linearization along a reference motion (Proposition 4.4 about a reference trajectory): one
+// StateSpace per state, all in the SAME independent coordinates (o's, or, among the choices of
+// the pivoting at each state, the one whose worst conditioning over the reference is the best;
+// the further quasi-velocities by pivoting at the first state), so that dx/dt = G(t) x + H(t) u can
+// be integrated along it (the transition matrix: dPhi/dt = G(t) Phi). Coordinates are never
+// switched on the way: where they stop parametrizing the motion (conditioning below
+// o.min_conditioning, or K0 = [Psi; E0], K = [A; E] singular) it throws Error naming the time, the
+// coordinates and better ones there.
+std::vector<StateSpace> linearize_along(const Model& m, const std::vector<State>& reference,
+                                        const LinearizeOptions& o = {});
+// Along a run's samples: a forward run with o.forward.efforts the laws it ran with (checked: the
+// efforts and accelerations at each sample must be the run's, else Error), an inverse run with
+// its efforts held at their sampled values.
+std::vector<StateSpace> linearize_along(const Model& m, const Trajectory& reference,
+                                        const LinearizeOptions& o = {});
 
 struct EquilibriumOptions {
   double t = 0;              // time of the loads and laws
@@ -134,5 +163,10 @@ Eigen::VectorXd mode_step(const Model& m, const Mode& mode, double amplitude);
 // Numbers with 17 significant digits; non-finite entries are refused (Error naming the entry).
 std::string state_space_csv(const StateSpace& ss, char matrix);
 std::string state_space_json(const StateSpace& ss, const std::vector<Mode>& modes);
+// Along a reference (linearize_along): CSV, one row per time and row label, "t,<matrix>,<column
+// labels...>"; JSON {states, inputs, outputs, samples: [{t, conditioning, reference, G, H, C, D,
+// drift, modes}]}. The labels must be the same at every sample (Error otherwise).
+std::string state_space_along_csv(const std::vector<StateSpace>& along, char matrix);
+std::string state_space_along_json(const std::vector<StateSpace>& along);
 
 }  // namespace mo2d

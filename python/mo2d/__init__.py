@@ -15,12 +15,15 @@ Parameter sweeps on Dask: mo2d.sweep (mo2d/_sweep.py; command line: python3 -m m
 
 from . import _mo2d
 from ._mo2d import (  # noqa: F401  (the public API)
+    Equilibrium,
     Error,
     Law,
+    Mode,
     Model,
     Result,
     Scene,
     State,
+    StateSpace,
     System,
     build_model,
     consistent_state,
@@ -31,6 +34,9 @@ from ._mo2d import (  # noqa: F401  (the public API)
     forward_dynamics,
     inverse,
     inverse_dynamics,
+    linearize,
+    modes,
+    static_equilibrium,
     write_filmstrip,
     write_frame,
     write_plot,
@@ -41,6 +47,7 @@ __all__ = [
     "Error", "Law", "Model", "Result", "Scene", "State", "System", "build_model",
     "consistent_state", "crosscheck", "crosscheck_forward", "crosscheck_inverse", "forward",
     "forward_dynamics", "inverse", "inverse_dynamics", "load_scene", "parse_scene", "sweep",
+    "Equilibrium", "Mode", "StateSpace", "linearize", "modes", "static_equilibrium",
     "write_filmstrip", "write_frame", "write_plot", "write_series_plot",
 ]
 

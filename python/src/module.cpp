@@ -76,4 +76,5 @@ PYBIND11_MODULE(_mo2d, m) {
   bind_scene(m);
   bind_system(m);
   bind_render(m);
+  bind_modes(m);
 }

@@ -1,5 +1,6 @@
 // State-space export (mo2d/modes.hpp): each matrix as a labelled CSV, everything as one JSON
 // document. Written by the caller through OutputSet or write_file_atomically (atomic).
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <sstream>
@@ -133,7 +134,76 @@ std::string state_space_json(const StateSpace& ss, const std::vector<Mode>& mode
   s << ",\n  \"drift\": " << vector_json(ss.states, ss.drift, "drift")
     << ",\n  \"reference_efforts\": " << vector_json(ss.inputs, ss.u, "efforts")
     << ",\n  \"approximate\": " << quoted(ss.approximate)
+    << ",\n  \"conditioning\": " << num(ss.conditioning, "conditioning")
     << ",\n  \"modes\": " << modes_json(ss, modes) << "\n}\n";
+  return s.str();
+}
+
+namespace {
+
+void check_same_labels(const std::vector<StateSpace>& along) {
+  for (const StateSpace& ss : along)
+    if (ss.states != along.front().states || ss.inputs != along.front().inputs ||
+        ss.outputs != along.front().outputs)
+      throw Error("state-space export along a reference: the labels at t = " + num(ss.t, "t") +
+                      " differ from those at the first time (linearize_along keeps them fixed)",
+                  "states", ss.t);
+}
+
+// The distinct notes of what was differenced, over all samples.
+std::string approximate_notes(const std::vector<StateSpace>& along) {
+  std::vector<std::string> notes;
+  for (const StateSpace& ss : along)
+    if (!ss.approximate.empty() &&
+        std::find(notes.begin(), notes.end(), ss.approximate) == notes.end())
+      notes.push_back(ss.approximate);
+  std::string s;
+  for (const auto& n : notes) s += (s.empty() ? "" : " | ") + n;
+  return s;
+}
+
+}  // namespace
+
+std::string state_space_along_csv(const std::vector<StateSpace>& along, char matrix) {
+  if (along.empty()) throw Error("state-space export along a reference: no samples");
+  check_same_labels(along);
+  const Block first = block_of(along.front(), matrix);
+  std::string s = std::string("t,") + first.name;
+  for (const auto& c : *first.cols) s += "," + csv_cell(c);
+  s += "\n";
+  for (const StateSpace& ss : along) {
+    const Block b = block_of(ss, matrix);
+    for (Eigen::Index i = 0; i < b.X->rows(); ++i) {
+      s += num(ss.t, "t") + "," + csv_cell((*b.rows)[i]);
+      for (Eigen::Index j = 0; j < b.X->cols(); ++j) s += "," + num((*b.X)(i, j), b.name);
+      s += "\n";
+    }
+  }
+  return s;
+}
+
+std::string state_space_along_json(const std::vector<StateSpace>& along) {
+  if (along.empty()) throw Error("state-space export along a reference: no samples");
+  check_same_labels(along);
+  const StateSpace& f = along.front();
+  std::ostringstream s;
+  s << "{\n  \"states\": " << labels_json(f.states) << ",\n  \"inputs\": " << labels_json(f.inputs)
+    << ",\n  \"outputs\": " << labels_json(f.outputs)
+    << ",\n  \"approximate\": " << quoted(approximate_notes(along)) << ",\n  \"samples\": [";
+  for (size_t k = 0; k < along.size(); ++k) {
+    const StateSpace& ss = along[k];
+    s << (k ? ",\n  {" : "\n  {") << "\"t\": " << num(ss.t, "t")
+      << ", \"conditioning\": " << num(ss.conditioning, "conditioning") << ",\n   \"reference\": "
+      << vector_json(ss.states, independent_state(ss, {ss.t, ss.q0, ss.q1}), "reference")
+      << ",\n   \"reference_efforts\": " << vector_json(ss.inputs, ss.u, "efforts");
+    for (char c : {'G', 'H', 'C', 'D'}) {
+      const Block b = block_of(ss, c);
+      s << ",\n   \"" << b.name << "\": " << matrix_json(b);
+    }
+    s << ",\n   \"drift\": " << vector_json(ss.states, ss.drift, "drift")
+      << ",\n   \"modes\": " << modes_json(ss, vibration_modes(ss)) << "}";
+  }
+  s << "\n  ]\n}\n";
   return s.str();
 }
 

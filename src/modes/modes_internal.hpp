@@ -11,6 +11,9 @@ namespace mo2d::detail {
 // velocity_vars, states) at the reference, chosen by pivoting or from o's labels (checked).
 void choose_coordinates(const Model& m, const State& ref, const LinearizeOptions& o,
                         StateSpace& ss);
+// The independent coordinates (q0 indices) for a whole reference: among the pivot's choices at
+// its states, the one whose smallest selection quality over all of them is the largest.
+std::vector<int> coordinates_along(const Model& m, const std::vector<State>& states);
 // dq0/dz, dq1/dw and dq1/dz of ss at the reference (after choose_coordinates).
 void tangent_bases(const Model& m, const State& ref, StateSpace& ss);
 // X = K^-1 [0; I], K = [J; the rows sel of the identity] (cols columns); Error if singular.

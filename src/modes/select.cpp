@@ -89,7 +89,8 @@ void choose_coordinates(const Model& m, const State& ref, const LinearizeOptions
                     " independent coordinates are needed, " +
                     std::to_string(ss.coordinate_vars.size()) + " given (" + given + ")",
                 m.name, ref.t);
-  if (selection_quality(N0, ss.coordinate_vars) < 1e-6)
+  const double position_quality = selection_quality(N0, ss.coordinate_vars);
+  if (position_quality < 1e-6)
     throw Error("linearization of '" + m.name + "': the coordinates " + given +
                     " do not parametrize the configurations near this one (the constraints tie "
                     "them); give instead e.g. " +
@@ -107,13 +108,68 @@ void choose_coordinates(const Model& m, const State& ref, const LinearizeOptions
     for (const auto& l : o.velocities) ss.velocity_vars.push_back(m.rate(l));
   }
   const std::string rates = join(m.rate_labels, ss.velocity_vars);
-  if (static_cast<int>(ss.velocity_vars.size()) != ss.dof ||
-      selection_quality(N1, ss.velocity_vars) < 1e-6)
+  const bool sized = static_cast<int>(ss.velocity_vars.size()) == ss.dof;
+  const double velocity_quality = sized ? selection_quality(N1, ss.velocity_vars) : 0.0;
+  ss.conditioning = std::min(position_quality, velocity_quality);
+  if (velocity_quality < 1e-6)
     throw Error("linearization of '" + m.name + "': the quasi-velocities " + rates + " are not " +
                     std::to_string(ss.dof) + " independent ones at this configuration",
                 m.name, ref.t);
   for (int k : ss.coordinate_vars) ss.states.push_back(m.coordinate_labels[k]);
   for (int k : ss.velocity_vars) ss.states.push_back(m.rate_labels[k]);
+}
+
+namespace {
+
+// Candidate coordinates for bases (n0 x p each) along a reference, without repeats: the pivot's
+// choice on all of them side by side (the coordinates that take part most over the whole
+// reference), each single coordinate when p = 1, the pivot's choice at each state.
+std::vector<std::vector<int>> candidates_along(const std::vector<MatrixXd>& bases, int n0, int p) {
+  MatrixXd all(n0, static_cast<Eigen::Index>(bases.size()) * p);
+  for (size_t i = 0; i < bases.size(); ++i)
+    all.middleCols(static_cast<Eigen::Index>(i) * p, p) = bases[i];
+  std::vector<std::vector<int>> tries = {pivot_rows(all, p)};
+  for (int k = 0; p == 1 && k < n0; ++k) tries.push_back({k});
+  for (const MatrixXd& N : bases) tries.push_back(pivot_rows(N, p));
+  std::vector<std::vector<int>> out, seen;
+  for (const auto& c : tries) {
+    std::vector<int> sorted = c;
+    std::sort(sorted.begin(), sorted.end());
+    if (std::find(seen.begin(), seen.end(), sorted) != seen.end()) continue;
+    seen.push_back(sorted);
+    out.push_back(c);
+  }
+  return out;
+}
+
+}  // namespace
+
+std::vector<int> coordinates_along(const Model& m, const std::vector<State>& states) {
+  const VectorXd d = column_scaling(m);
+  VectorXd psi(m.m0);
+  MatrixXd Psi(m.m0, m.n0);
+  std::vector<MatrixXd> bases;
+  for (const State& s : states) {
+    position_jacobian(m, s.q0, s.t, psi, Psi);
+    bases.push_back(null_basis(Psi * d.head(m.n0).asDiagonal(), m.n0));
+    // a change of the DOF: the bases up to it (linearize_along reports the change)
+    if (bases.back().cols() != bases.front().cols()) {
+      bases.pop_back();
+      break;
+    }
+  }
+  const int p = static_cast<int>(bases.front().cols());
+  std::vector<int> best;
+  double best_worst = -1;
+  for (const auto& c : candidates_along(bases, m.n0, p)) {
+    double worst = 1;
+    for (const MatrixXd& N : bases) worst = std::min(worst, selection_quality(N, c));
+    if (worst > best_worst) {
+      best_worst = worst;
+      best = c;
+    }
+  }
+  return best;
 }
 
 // X = K^-1 [0; I] for K = [J; rows sel of I] (least squares if J has redundant rows: consistent).
