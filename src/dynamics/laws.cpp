@@ -1,9 +1,11 @@
 // Laws at a state (mo2d/law.hpp): the quantities a law reads, from (q0, q1), and its value.
 #include <array>
 #include <cmath>
+#include <exception>
 #include <sstream>
 
 #include "constraints/common.hpp"
+#include "dynamics/derivatives.hpp"
 #include "dynamics/points.hpp"
 #include "mo2d/error.hpp"
 #include "mo2d/model.hpp"
@@ -66,6 +68,27 @@ double quantity_value(const Model& m, const Quantity& q,
   return 0;
 }
 
+namespace detail {
+
+Jet call_law(const CompiledLaw& law, std::span<const Jet> x, double t, const char* role,
+             const std::string& element) {
+  const auto failed = [&](const char* what) {
+    return role + std::string(" '") + element + "' failed at t = " + fmt(t) + " s: " + what;
+  };
+  try {
+    return law.f(x, Jet(t));
+  } catch (const Error& e) {
+    if (!e.element().empty() || !std::isnan(e.time())) throw;  // it names its own element
+    throw Error(failed(e.what()), element, t);
+  } catch (const std::exception& e) {  // user code (a Python callable): kept, nested
+    std::throw_with_nested(Error(failed(e.what()), element, t));
+  } catch (...) {
+    std::throw_with_nested(Error(failed("an exception of unknown type"), element, t));
+  }
+}
+
+}  // namespace detail
+
 double law_value(const Model& m, const CompiledLaw& law,
                  const Eigen::Ref<const Eigen::VectorXd>& q0,
                  const Eigen::Ref<const Eigen::VectorXd>& q1, double t, const char* role,
@@ -74,7 +97,7 @@ double law_value(const Model& m, const CompiledLaw& law,
   std::array<Jet, kMaxLawArgs> x;
   const size_t n = law.args.size();
   for (size_t k = 0; k < n; ++k) x[k] = Jet(quantity_value(m, law.args[k], q0, q1));
-  const double v = law.f(std::span<const Jet>(x.data(), n), Jet(t)).v;
+  const double v = detail::call_law(law, std::span<const Jet>(x.data(), n), t, role, element).v;
   if (std::isfinite(v)) return v;
   std::ostringstream s;
   s << role << " '" << element << "' is not finite at t = " << detail::fmt(t) << " s";
