@@ -165,6 +165,7 @@ void bind_transmission(py::module_& m) {
       [](double mass, const P2& com, double inertia, const std::vector<py::dict>& shafts,
          const std::string& name) {
         std::vector<TransmissionShaft> s;
+        s.reserve(shafts.size());
         for (const auto& d : shafts) s.push_back(to_shaft(d));
         return lumped_dict(lump_transmission({mass, Vec2(com[0], com[1]), inertia}, s, name));
       },

@@ -18,11 +18,8 @@ using VecRef = Eigen::Ref<const Eigen::VectorXd>;
 Jet quantity_jet(const Model& m, const Quantity& q, const VecRef& q0, const VecRef& q1,
                  const VecRef& dq0, const VecRef& dq1);
 
-// law.f(x, t) of the load `role` '`element`' (src/dynamics/laws.cpp). A mo2d::Error naming no
-// element nor time is rethrown as one naming them; any other exception (user code inside the law:
-// a Python callable's, std::bad_alloc) as the Error "<role> '<element>' failed at t = ... s:
-// <what>" with the original nested in it (std::throw_with_nested), so that a binding can raise
-// the original again (python/src/module.cpp) and a driver can tell it from a numerical failure.
+// law.f(x, t) of the load `role` '`element`', its failures naming the load and the time
+// (call_user_code, src/run/user_code.hpp).
 Jet call_law(const CompiledLaw& law, std::span<const Jet> x, double t, const char* role,
              const std::string& element);
 

@@ -1,7 +1,6 @@
 // Laws at a state (mo2d/law.hpp): the quantities a law reads, from (q0, q1), and its value.
 #include <array>
 #include <cmath>
-#include <exception>
 #include <sstream>
 
 #include "constraints/common.hpp"
@@ -10,6 +9,7 @@
 #include "mo2d/error.hpp"
 #include "mo2d/model.hpp"
 #include "run/format.hpp"
+#include "run/user_code.hpp"
 
 namespace mo2d {
 namespace {
@@ -72,19 +72,7 @@ namespace detail {
 
 Jet call_law(const CompiledLaw& law, std::span<const Jet> x, double t, const char* role,
              const std::string& element) {
-  const auto failed = [&](const char* what) {
-    return role + std::string(" '") + element + "' failed at t = " + fmt(t) + " s: " + what;
-  };
-  try {
-    return law.f(x, Jet(t));
-  } catch (const Error& e) {
-    if (!e.element().empty() || !std::isnan(e.time())) throw;  // it names its own element
-    throw Error(failed(e.what()), element, t);
-  } catch (const std::exception& e) {  // user code (a Python callable): kept, nested
-    std::throw_with_nested(Error(failed(e.what()), element, t));
-  } catch (...) {
-    std::throw_with_nested(Error(failed("an exception of unknown type"), element, t));
-  }
+  return call_user_code([&] { return law.f(x, Jet(t)); }, role, element, t);
 }
 
 }  // namespace detail

@@ -122,3 +122,20 @@ def test_a_law_returning_a_non_number_names_the_load():
     with pytest.raises(mo2d.Error, match="torque 'brake' failed at t = 0 s: .*not a number") as i:
         run(s, "rk4")
     assert i.value.element == "brake" and i.value.time == 0.0
+
+
+def test_a_motion_raising_in_inverse_dynamics_names_the_coordinate():
+    times = []
+
+    def motion(t):
+        times.append(t)
+        if t > T_FAIL:
+            raise IndexError("no such motion")
+        return (t, 1.0, 0.0)
+
+    model = mo2d.build_model(pendulum())
+    with pytest.raises(IndexError, match="no such motion") as info:
+        mo2d.inverse_dynamics(model, [("link.angle", motion)], t1=1.0, samples=11)
+    e = info.value
+    assert e.mo2d_element == "link.angle" and e.mo2d_time == times[-1] == pytest.approx(0.4)
+    assert "prescribed motion of 'link.angle' failed at t = 0.4 s" in e.mo2d_message
