@@ -14,7 +14,8 @@ integrator="rk4", step=1e-4), mo2d.inverse(scene, samples=1001), load_scene(path
 Mechanisms built in Python: mo2d.System, mo2d.build_model, mo2d.inverse_dynamics,
 mo2d.forward_dynamics, loads as numbers, expression strings, callables or mo2d.Law(labels, f);
 gears, racks, user constraints (expressions), mo2d.pd_control, mo2d.Table / read_table_csv,
-mo2d.efforts_from_inverse, mo2d.lump_transmission. An exception raised by a Python law during a
+mo2d.efforts_from_inverse / efforts_from_samples, mo2d.inverse_dynamics_lagrange,
+mo2d.lump_transmission, r.units. An exception raised by a Python law during a
 run comes out as itself, with a note (and mo2d_element, mo2d_time) naming the load and the time.
 
 Step by step: mo2d.ForwardWorkspace (accelerations, multipliers, projection, reactions at a
@@ -50,8 +51,10 @@ from ._mo2d import (  # noqa: F401  (step by step, energies, tables, controllers
     InverseWorkspace,
     Table,
     efforts_from_inverse,
+    efforts_from_samples,
     energy_balance,
     energy_balance_error,
+    inverse_dynamics_lagrange,
     kinetic_energy,
     lump_transmission,
     pd_control,
@@ -67,9 +70,10 @@ __all__ = [
     "write_filmstrip", "write_frame", "write_plot", "write_series_plot",
 ]
 __all__ += [
-    "ForwardWorkspace", "InverseWorkspace", "Table", "efforts_from_inverse", "energy_balance",
-    "energy_balance_error", "kinetic_energy", "lump_transmission", "pd_control",
-    "potential_energy", "rate_label", "read_table_csv",
+    "ForwardWorkspace", "InverseWorkspace", "Table", "efforts_from_inverse",
+    "efforts_from_samples", "energy_balance", "energy_balance_error", "inverse_dynamics_lagrange",
+    "kinetic_energy", "lump_transmission", "pd_control", "potential_energy", "rate_label",
+    "read_table_csv",
 ]
 
 

@@ -1,5 +1,6 @@
 // The rest of the public API in Python: lookup tables (mo2d/table.hpp), PD controllers
-// (mo2d/control.hpp), efforts replayed from inverse dynamics (mo2d/forward.hpp), the lumped
+// (mo2d/control.hpp), efforts replayed from inverse dynamics or from a run (mo2d/forward.hpp),
+// inverse dynamics by Lagrange multipliers, the units of a result's columns, the lumped
 // transmission (mo2d/transmission.hpp), and the System's gears, racks and user constraints
 // (mo2d/system.hpp). Constraints are expressions only: their Jacobian needs exact derivatives,
 // which an expression gives and a Python callable does not.
@@ -12,6 +13,7 @@
 
 #include "bindings.hpp"
 #include "mo2d/control.hpp"
+#include "mo2d/csv.hpp"
 #include "mo2d/error.hpp"
 #include "mo2d/forward.hpp"
 #include "mo2d/system.hpp"
@@ -174,6 +176,37 @@ void bind_transmission(py::module_& m) {
       "the lumped equivalent (Gamba 2009) of a gear train: shafts=[{mass, inertia, axis, ratio}]");
 }
 
+// Runs of a second formulation and replayed results: inverse_dynamics_lagrange, efforts from a
+// sampled run (cubic Hermite), and the units of a result's columns.
+void bind_run_extras(py::module_& m) {
+  m.def(
+      "inverse_dynamics_lagrange",
+      [](const std::shared_ptr<Model>& model, const Motions& motion, double t0, double t1,
+         int samples, const Params& params) {
+        InverseOptions o;
+        o.t0 = t0;
+        o.t1 = t1;
+        o.samples = samples;
+        return make_result(model, inverse_dynamics_lagrange(*model, to_motions(motion, params), o));
+      },
+      py::arg("model"), py::arg("motion"), py::arg("t0") = 0.0, py::arg("t1") = 1.0,
+      py::arg("samples") = 501, py::arg("params") = Params{},
+      "inverse dynamics by Lagrange multipliers on a model built with reduction='none'");
+  m.def(
+      "efforts_from_samples",
+      [](const Result& r) {
+        std::vector<Law> out;
+        for (auto& f : efforts_from_samples(r.trajectory)) out.emplace_back(f);
+        return out;
+      },
+      py::arg("result"), "one mo2d.Law of t per input: the run's efforts, cubic Hermite in t");
+  const py::object result = m.attr("Result");  // bound by bind_results
+  py::class_<Result> c(result);
+  c.def_property_readonly(
+      "units", [](const Result& r) { return trajectory_csv_units(*r.model, r.trajectory); },
+      "the SI unit of every column of r.columns ('' where the model cannot say)");
+}
+
 void bind_system_extras(py::module_& m) {
   const py::object system = m.attr("System");  // bound by bind_system_class
   py::class_<System, std::shared_ptr<System>> c(system);
@@ -222,6 +255,7 @@ void bind_extras(py::module_& m) {
   bind_table(m);
   bind_control(m);
   bind_transmission(m);
+  bind_run_extras(m);
   bind_system_extras(m);
 }
 

@@ -249,3 +249,59 @@ def test_lump_transmission_has_the_invariants():
     assert h["housing_inertia"] == pytest.approx(0.7 + spread, rel=1e-12)
     with pytest.raises(mo2d.Error, match="gearbox"):
         mo2d.lump_transmission(1.0, (0, 0), 0.1, [dict(mass=-1.0, inertia=0.1)], name="gearbox")
+
+
+def pendulum_system(mass=2.0, length=0.5):
+    s = mo2d.System("pendulum")
+    s.add_ground_node("O", (0, 0))
+    s.add_body("link", nodes={"O": (0, 0), "P": (length, 0)}, mass=mass, com="P")
+    s.add_revolute("pivot", "ground.O", "link.O", actuated=True)
+    s.add_coordinate("link.angle", rate=[("link.w", 1.0)])
+    s.set_gravity((0, -G))
+    return s
+
+
+def pendulum_torque(t, mass=2.0, length=0.5):
+    theta = 0.5 * np.sin(3 * t) + t**2
+    dd = -4.5 * np.sin(3 * t) + 2
+    return mass * length**2 * dd + mass * G * length * np.cos(theta)
+
+
+MOTION = [("link.angle", "0.5 * sin(3 * t) + t^2")]
+
+
+def test_inverse_dynamics_by_lagrange_multipliers():
+    model = mo2d.build_model(pendulum_system(), reduction="none")
+    r = mo2d.inverse_dynamics_lagrange(model, MOTION, t1=1.0, samples=21)
+    np.testing.assert_allclose(r["pivot.torque"], pendulum_torque(r.t), rtol=1e-9, atol=1e-9)
+    flat = mo2d.inverse_dynamics(mo2d.build_model(pendulum_system()), MOTION, t1=1.0,
+                                 samples=21)
+    np.testing.assert_allclose(r["pivot.torque"], flat["pivot.torque"], rtol=1e-10, atol=1e-10)
+
+
+def test_efforts_from_samples_interpolate_the_run():
+    """Cubic Hermite between samples, slopes from centred differences: at the midpoints of the
+    interior intervals the error against the closed form falls as h^4 (the slope errors cancel
+    there), in the two end intervals (one-sided slopes) as h^2."""
+    model = mo2d.build_model(pendulum_system())
+
+    def midpoint_errors(samples):
+        r = mo2d.inverse_dynamics(model, MOTION, t1=1.0, samples=samples)
+        (law,) = mo2d.efforts_from_samples(r)
+        assert law([], r.t[3]) == pytest.approx(r["pivot.torque"][3], rel=1e-14)
+        mid = (r.t[1:] + r.t[:-1]) / 2
+        err = np.array([abs(law([], t) - pendulum_torque(t)) for t in mid])
+        return np.max(err[1:-1]), max(err[0], err[-1])
+
+    (inner_c, end_c), (inner_f, end_f) = midpoint_errors(51), midpoint_errors(101)
+    assert inner_f < 1e-6 and 12 < inner_c / inner_f < 20  # 2^4
+    assert 3 < end_c / end_f < 5  # 2^2
+
+
+def test_units_of_the_columns():
+    model = mo2d.build_model(pendulum_system())
+    r = mo2d.inverse_dynamics(model, MOTION, t1=1.0, samples=3)
+    units = dict(zip(r.columns, r.units))
+    assert len(r.units) == len(r.columns)
+    assert (units["t"], units["link.P.x"], units["link.w"], units["pivot.torque"],
+            units["pivot.Fx"]) == ("s", "m", "rad/s", "N·m", "N")
