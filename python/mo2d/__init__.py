@@ -8,12 +8,24 @@ Scene files::
     r.t, r["crank_pivot.torque"], r.efforts, r.reactions, r.stats["cpu_seconds"]
     r.to_pandas()                       # when pandas is installed
 
+Run settings as keywords, checked like the command line's: mo2d.forward(scene, duration=2,
+integrator="rk4", step=1e-4), mo2d.inverse(scene, samples=1001), load_scene(path, run={...}).
+
 Mechanisms built in Python: mo2d.System, mo2d.build_model, mo2d.inverse_dynamics,
-mo2d.forward_dynamics, loads as numbers, expression strings, callables or mo2d.Law(labels, f).
+mo2d.forward_dynamics, loads as numbers, expression strings, callables or mo2d.Law(labels, f);
+gears, racks, user constraints (expressions), mo2d.pd_control, mo2d.Table / read_table_csv,
+mo2d.efforts_from_inverse / efforts_from_samples, mo2d.inverse_dynamics_lagrange,
+mo2d.lump_transmission, r.units. An exception raised by a Python law during a
+run comes out as itself, with a note (and mo2d_element, mo2d_time) naming the load and the time.
+
+Step by step: mo2d.ForwardWorkspace (accelerations, multipliers, projection, reactions at a
+state), mo2d.InverseWorkspace (one sample at a time); mo2d.energy_balance(result).
 Parameter sweeps on Dask: mo2d.sweep (mo2d/_sweep.py; command line: python3 -m mo2d sweep). Every error is a mo2d.Error.
 """
 
 from . import _mo2d
+from . import _runs
+from ._runs import forward, inverse  # noqa: F401  (run settings as keywords)
 from ._mo2d import (  # noqa: F401  (the public API)
     Equilibrium,
     Error,
@@ -30,9 +42,7 @@ from ._mo2d import (  # noqa: F401  (the public API)
     crosscheck,
     crosscheck_forward,
     crosscheck_inverse,
-    forward,
     forward_dynamics,
-    inverse,
     inverse_dynamics,
     linearize,
     modes,
@@ -42,6 +52,22 @@ from ._mo2d import (  # noqa: F401  (the public API)
     write_plot,
     write_series_plot,
 )
+from ._mo2d import (  # noqa: F401  (step by step, energies, tables, controllers, transmissions)
+    ForwardWorkspace,
+    InverseWorkspace,
+    Table,
+    efforts_from_inverse,
+    efforts_from_samples,
+    energy_balance,
+    energy_balance_error,
+    inverse_dynamics_lagrange,
+    kinetic_energy,
+    lump_transmission,
+    pd_control,
+    potential_energy,
+    rate_label,
+    read_table_csv,
+)
 
 __all__ = [
     "Error", "Law", "Model", "Result", "Scene", "State", "System", "build_model",
@@ -50,6 +76,17 @@ __all__ = [
     "Equilibrium", "Mode", "StateSpace", "linearize", "modes", "static_equilibrium",
     "write_filmstrip", "write_frame", "write_plot", "write_series_plot",
 ]
+__all__ += [
+    "ForwardWorkspace", "InverseWorkspace", "Table", "efforts_from_inverse",
+    "efforts_from_samples", "energy_balance", "energy_balance_error", "inverse_dynamics_lagrange",
+    "kinetic_energy", "lump_transmission", "pd_control", "potential_energy", "rate_label",
+    "read_table_csv",
+]
+
+
+def _run_overrides(run):
+    """run={"duration": 2} -> [("duration", "2")] (any key of `mo2d inverse` or `forward`)."""
+    return _runs.run_overrides(run, _runs.ALL_KEYS)
 
 
 def _overrides(set):
@@ -67,15 +104,16 @@ def _overrides(set):
     return out
 
 
-def load_scene(path, set=None):
+def load_scene(path, set=None, run=None):
     """Read and check a scene file (docs/scene-format.md); set={"name": value} overrides its
-    parameters like `mo2d inverse --set name=value`. Raises mo2d.Error (file:line:column)."""
-    return _mo2d._load_scene(str(path), _overrides(set))
+    parameters like `mo2d inverse --set name=value`, run={"duration": 2} its run settings like
+    `--duration 2`. Raises mo2d.Error (file:line:column, or "--duration: ...")."""
+    return _mo2d._load_scene(str(path), _overrides(set), _run_overrides(run))
 
 
-def parse_scene(text, file_name="<scene>", set=None):
+def parse_scene(text, file_name="<scene>", set=None, run=None):
     """A scene from YAML text (errors name file_name:line:column)."""
-    return _mo2d._parse_scene(text, file_name, _overrides(set))
+    return _mo2d._parse_scene(text, file_name, _overrides(set), _run_overrides(run))
 
 
 def _to_pandas(self):

@@ -12,20 +12,9 @@
 #include "laws.hpp"
 #include "mo2d/crosscheck.hpp"
 #include "mo2d/mo2d.hpp"
+#include "run_args.hpp"
 
 namespace mo2d::py_bind {
-
-namespace {
-
-using Pairs = std::vector<std::pair<std::string, double>>;
-using Motions = std::vector<std::pair<std::string, py::object>>;  // coordinate -> s(t)
-
-Reduction to_reduction(const std::string& s) {
-  if (s == "flat") return Reduction::flat;
-  if (s == "subsystems") return Reduction::subsystems;
-  if (s == "none") return Reduction::none;
-  throw Error("reduction: 'flat', 'subsystems' or 'none', not '" + s + "'", "reduction");
-}
 
 Integrator to_integrator(const std::string& s) {
   for (Integrator i : {Integrator::cvode_bdf, Integrator::cvode_adams, Integrator::rk4,
@@ -35,6 +24,14 @@ Integrator to_integrator(const std::string& s) {
               "integrator");
 }
 
+Formulation to_formulation(const std::string& s) {
+  for (Formulation f :
+       {Formulation::augmented_lagrangian, Formulation::lagrange, Formulation::null_space})
+    if (s == to_string(f)) return f;
+  throw Error("formulation: augmented_lagrangian, lagrange or null_space, not '" + s + "'",
+              "formulation");
+}
+
 std::vector<Prescribed> to_motions(const Motions& motion, const Params& params) {
   std::vector<Prescribed> out;
   for (const auto& [c, v] : motion) out.push_back(to_motion(c, v, params));
@@ -42,8 +39,7 @@ std::vector<Prescribed> to_motions(const Motions& motion, const Params& params) 
 }
 
 // Efforts by input label ("crank_pivot.torque" -> law), ordered like Model::inputs.
-EffortLaws to_efforts(const Model& m, const std::vector<std::pair<std::string, py::object>>& e,
-                      const Params& params) {
+EffortLaws to_efforts(const Model& m, const Motions& e, const Params& params) {
   EffortLaws out(m.inputs.size());
   const auto labels = m.input_labels();
   for (const auto& [label, v] : e) {
@@ -52,6 +48,17 @@ EffortLaws to_efforts(const Model& m, const std::vector<std::pair<std::string, p
     out[static_cast<std::size_t>(at - labels.begin())] = to_law(v, params);
   }
   return out;
+}
+
+namespace {
+
+using Pairs = std::vector<std::pair<std::string, double>>;
+
+Reduction to_reduction(const std::string& s) {
+  if (s == "flat") return Reduction::flat;
+  if (s == "subsystems") return Reduction::subsystems;
+  if (s == "none") return Reduction::none;
+  throw Error("reduction: 'flat', 'subsystems' or 'none', not '" + s + "'", "reduction");
 }
 
 Result inverse(const std::shared_ptr<Model>& model, const Motions& motion, double t0, double t1,
@@ -67,20 +74,31 @@ Result inverse(const std::shared_ptr<Model>& model, const Motions& motion, doubl
   return make_result(model, inverse_dynamics(*model, to_motions(motion, params), o));
 }
 
+// stop_when(t, q0, q1) -> float of Python (None: none); the run stops where it changes sign.
+std::function<double(double, const VectorXd&, const VectorXd&)> to_stop(const py::object& f) {
+  if (f.is_none()) return {};
+  if (!PyCallable_Check(f.ptr())) throw Error("stop_when: a callable (t, q0, q1) -> float");
+  return
+      [f](double t, const VectorXd& q0, const VectorXd& q1) { return f(t, q0, q1).cast<double>(); };
+}
+
 Result forward(const std::shared_ptr<Model>& model, const State& initial, double t1, int samples,
                const std::string& integrator, double rtol, double atol, double step,
-               const std::vector<std::pair<std::string, py::object>>& efforts, const Params& params,
-               double max_seconds) {
+               const Motions& efforts, const Params& params, double max_seconds,
+               const std::string& formulation, int max_steps, const py::object& stop_when) {
   ForwardOptions o;
   o.t0 = initial.t;
   o.t1 = t1;
   o.samples = samples;
   o.integrator = to_integrator(integrator);
+  o.formulation = to_formulation(formulation);
   o.rtol = rtol;
   o.atol = atol;
   o.step = step;
   o.max_seconds = max_seconds;
+  o.max_steps = max_steps;
   o.efforts = to_efforts(*model, efforts, params);
+  o.stop_when = to_stop(stop_when);
   return make_result(model, forward_dynamics(*model, initial, o));
 }
 
@@ -119,10 +137,12 @@ void bind_runs(py::module_& m) {
   m.def(
       "forward_dynamics", &forward, py::arg("model"), py::arg("initial"), py::arg("t1"),
       py::arg("samples") = 101, py::arg("integrator") = "cvode_bdf", py::arg("rtol") = 1e-8,
-      py::arg("atol") = 1e-10, py::arg("step") = 1e-3,
-      py::arg("efforts") = std::vector<std::pair<std::string, py::object>>{},
+      py::arg("atol") = 1e-10, py::arg("step") = 1e-3, py::arg("efforts") = Motions{},
       py::arg("params") = Params{}, py::arg("max_seconds") = kDefaultMaxSeconds,
-      "efforts: [(input label, law)]; integrator: cvode_bdf, cvode_adams, rk4, dopri5, baumgarte");
+      py::arg("formulation") = "augmented_lagrangian", py::arg("max_steps") = kDefaultMaxSteps,
+      py::arg("stop_when") = py::none(),
+      "efforts: [(input label, law)]; integrator: cvode_bdf, cvode_adams, rk4, dopri5, baumgarte; "
+      "stop_when(t, q0, q1) -> float: the run stops where it changes sign");
   m.def(
       "crosscheck_inverse",
       [](const System& s, const Motions& motion, double t0, double t1, double step,
@@ -145,6 +165,8 @@ void bind_runs(py::module_& m) {
       },
       py::arg("model"), py::arg("initial"), py::arg("t1"), py::arg("step") = 1.0 / 2000,
       "model built with reduction='none'");
+  bind_workspace(m);
+  bind_extras(m);
 }
 
 }  // namespace mo2d::py_bind

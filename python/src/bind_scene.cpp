@@ -1,9 +1,14 @@
 // Scene files in Python: load_scene(path, overrides), then inverse(scene) / forward(scene), run
 // the way `mo2d inverse` and `mo2d forward` run them (apps/cmd_inverse.cpp, cmd_forward.cpp): the
 // same checks, the same output columns, no files written. The GIL is released during a run.
+// Run settings given to a run (mo2d.forward(scene, duration=2), python/mo2d/_runs.py) are the
+// command line's --duration 2: RunOverrides applied by parse_scene on top of the scene's run:
+// block, so the same checks and the same messages ("--duration: run.duration: must be > 0 s").
 #include <pybind11/stl.h>
 
+#include <fstream>
 #include <memory>
+#include <sstream>
 #include <utility>
 
 #include "bindings.hpp"
@@ -22,6 +27,45 @@ std::vector<ParameterOverride> to_overrides(const Overrides& set) {
   std::vector<ParameterOverride> out;
   for (const auto& [name, value] : set) out.push_back({name, value});
   return out;
+}
+
+std::vector<RunOverride> to_run_overrides(const Overrides& run) {
+  std::vector<RunOverride> out;
+  for (const auto& [key, value] : run) out.push_back({key, value});
+  return out;
+}
+
+// A Scene with the text, the parameter and the run overrides it was read with, so that a run
+// with other settings reads the same text again (a file edited since is not read again).
+struct SourcedScene : Scene {
+  std::string text{};
+  Overrides set_overrides{}, run_overrides{};  // Scene::run: the settings they give
+};
+
+std::shared_ptr<SourcedScene> parse_sourced(std::string text, const std::string& file_name,
+                                            const Overrides& set, const Overrides& run) {
+  auto s = std::make_shared<SourcedScene>();
+  static_cast<Scene&>(*s) = parse_scene(text, file_name, to_overrides(set), to_run_overrides(run));
+  s->text = std::move(text);
+  s->set_overrides = set;
+  s->run_overrides = run;
+  return s;
+}
+
+std::shared_ptr<SourcedScene> load_sourced(const std::string& path, const Overrides& set,
+                                           const Overrides& run) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) load_scene(path);  // throws load_scene's own error ("cannot open the scene file")
+  std::ostringstream text;
+  text << in.rdbuf();
+  return parse_sourced(text.str(), path, set, run);
+}
+
+// The scene read again with `run` after its own run overrides (the later wins).
+std::shared_ptr<SourcedScene> with_run(const SourcedScene& s, const Overrides& run) {
+  Overrides all = s.run_overrides;
+  all.insert(all.end(), run.begin(), run.end());
+  return parse_sourced(s.text, s.file, s.set_overrides, all);
 }
 
 std::shared_ptr<Model> scene_model(const Scene& s) {
@@ -75,46 +119,67 @@ const char* solve_name(Solve s) {
 
 }  // namespace
 
+void bind_run_settings(py::class_<SourcedScene, std::shared_ptr<SourcedScene>>& c) {
+  c.def_property_readonly("tolerance", [](const SourcedScene& s) { return s.run.tolerance; })
+      .def_property_readonly("integrator",
+                             [](const SourcedScene& s) { return to_string(s.run.integrator); })
+      .def_property_readonly("formulation",
+                             [](const SourcedScene& s) { return to_string(s.run.formulation); })
+      .def_property_readonly("rtol", [](const SourcedScene& s) { return s.run.rtol; })
+      .def_property_readonly("atol", [](const SourcedScene& s) { return s.run.atol; })
+      .def_property_readonly("step", [](const SourcedScene& s) { return s.run.step; })
+      .def_property_readonly("max_steps", [](const SourcedScene& s) { return s.run.max_steps; })
+      .def_property_readonly("max_seconds", [](const SourcedScene& s) { return s.run.max_seconds; })
+      .def_property_readonly("max_memory", [](const SourcedScene& s) { return s.run.max_memory; })
+      .def_property_readonly(
+          "run_overrides", [](const SourcedScene& s) { return s.run_overrides; },
+          "the run settings given on top of the scene's run: block, in order")
+      .def("with_run", &with_run, py::arg("run"),
+           "the scene read again with these run settings [(key, text)] on top (RunOverride)");
+}
+
 void bind_scene(py::module_& m) {
-  py::class_<Scene, std::shared_ptr<Scene>>(m, "Scene",
-                                            "A scene file, read and checked (mo2d.load_scene)")
-      .def_readonly("file", &Scene::file)
+  py::class_<SourcedScene, std::shared_ptr<SourcedScene>> c(
+      m, "Scene", "A scene file, read and checked (mo2d.load_scene)");
+  c.def_readonly("file", &Scene::file)
       .def_readonly("name", &Scene::name)
       .def_property_readonly("parameters",
-                             [](const Scene& s) {
+                             [](const SourcedScene& s) {
                                py::dict d;
                                for (const auto& [k, v] : s.parameters) d[py::str(k)] = v;
                                return d;
                              })
-      .def_property_readonly("solve", [](const Scene& s) { return solve_name(s.run.solve); })
-      .def_property_readonly("t0", [](const Scene& s) { return s.run.t0; })
-      .def_property_readonly("duration", [](const Scene& s) { return s.run.duration; })
-      .def_property_readonly("samples", [](const Scene& s) { return s.run.samples; })
-      .def("build_model", &scene_model, "the model of the scene (checks the labels it uses)")
-      .def("__repr__",
-           [](const Scene& s) { return "<mo2d.Scene '" + s.name + "' from " + s.file + ">"; });
+      .def_property_readonly("solve", [](const SourcedScene& s) { return solve_name(s.run.solve); })
+      .def_property_readonly("t0", [](const SourcedScene& s) { return s.run.t0; })
+      .def_property_readonly("duration", [](const SourcedScene& s) { return s.run.duration; })
+      .def_property_readonly("samples", [](const SourcedScene& s) { return s.run.samples; })
+      .def(
+          "build_model", [](const SourcedScene& s) { return scene_model(s); },
+          "the model of the scene (checks the labels it uses)")
+      .def("__repr__", [](const SourcedScene& s) {
+        return "<mo2d.Scene '" + s.name + "' from " + s.file + ">";
+      });
+  bind_run_settings(c);
 
-  m.def(
-      "_load_scene",
-      [](const std::string& path, const Overrides& set) {
-        const auto overrides = to_overrides(set);
-        return std::make_shared<Scene>(load_scene(path, overrides));
-      },
-      py::arg("path"), py::arg("overrides") = Overrides{});
+  m.def("_load_scene", &load_sourced, py::arg("path"), py::arg("overrides") = Overrides{},
+        py::arg("run") = Overrides{});
   m.def(
       "_parse_scene",
-      [](const std::string& text, const std::string& file_name, const Overrides& set) {
-        const auto overrides = to_overrides(set);
-        return std::make_shared<Scene>(parse_scene(text, file_name, overrides));
-      },
-      py::arg("text"), py::arg("file_name") = "<scene>", py::arg("overrides") = Overrides{});
-  m.def("inverse", &run_inverse, py::arg("scene"), py::call_guard<py::gil_scoped_release>(),
-        "inverse dynamics of a scene, as `mo2d inverse` runs it (no files written)");
-  m.def("forward", &run_forward, py::arg("scene"), py::call_guard<py::gil_scoped_release>(),
-        "forward dynamics of a scene from its initial state, as `mo2d forward` runs it");
+      [](const std::string& text, const std::string& file_name, const Overrides& set,
+         const Overrides& run) { return parse_sourced(text, file_name, set, run); },
+      py::arg("text"), py::arg("file_name") = "<scene>", py::arg("overrides") = Overrides{},
+      py::arg("run") = Overrides{});
+  m.def(
+      "_inverse", [](const SourcedScene& s) { return run_inverse(s); }, py::arg("scene"),
+      py::call_guard<py::gil_scoped_release>(),
+      "inverse dynamics of a scene, as `mo2d inverse` runs it (no files written)");
+  m.def(
+      "_forward", [](const SourcedScene& s) { return run_forward(s); }, py::arg("scene"),
+      py::call_guard<py::gil_scoped_release>(),
+      "forward dynamics of a scene from its initial state, as `mo2d forward` runs it");
   m.def(
       "crosscheck",
-      [](const Scene& scene, double step) {
+      [](const SourcedScene& scene, double step) {
         CrosscheckReport r;
         {
           py::gil_scoped_release release;

@@ -33,6 +33,32 @@ void raise_error(const Error& e, const Location* where, int column) {
   PyErr_SetObject(error_class, instance.ptr());
 }
 
+// An Error that carries an exception of Python code (a law's, raised inside a run and nested by
+// the run, src/dynamics/laws.cpp): that Python exception raised again as it was (its type, its
+// message), with the Error's message ("torque 'kick' failed at t = 0.5 s: ...") added as a note
+// (PEP 678, shown under the traceback) and as the attributes mo2d_message, mo2d_element and
+// mo2d_time. false (nothing raised) when e carries none.
+bool raise_nested_python(const Error& e) {
+  const auto* nested = dynamic_cast<const std::nested_exception*>(&e);
+  if (nested == nullptr || !nested->nested_ptr()) return false;
+  try {
+    nested->rethrow_nested();
+  } catch (py::error_already_set& python) {
+    const py::object& value = python.value();
+    try {
+      if (py::hasattr(value, "add_note")) value.attr("add_note")(py::str(e.what()));
+      value.attr("mo2d_message") = py::str(e.what());
+      value.attr("mo2d_element") = py::str(e.element());
+      value.attr("mo2d_time") = py::float_(e.time());
+    } catch (py::error_already_set&) {  // an exception without a __dict__: raised as it is
+    }
+    python.restore();
+    return true;
+  } catch (...) {  // a C++ exception: the Error alone
+  }
+  return false;
+}
+
 }  // namespace
 
 void bind_errors(py::module_& m) {
@@ -61,7 +87,7 @@ void bind_errors(py::module_& m) {
     } catch (const ExpressionError& e) {
       raise_error(e, nullptr, e.column());
     } catch (const Error& e) {
-      raise_error(e, nullptr, 0);
+      if (!raise_nested_python(e)) raise_error(e, nullptr, 0);
     }
   });
 }

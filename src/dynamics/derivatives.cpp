@@ -104,12 +104,13 @@ Jet quantity_jet(const Model& m, const Quantity& q, const VecRef& q0, const VecR
 }
 
 Jet law_jet(const Model& m, const CompiledLaw& law, const VecRef& q0, const VecRef& q1,
-            const VecRef& dq0, const VecRef& dq1, double t) {
+            const VecRef& dq0, const VecRef& dq1, double t, const char* role,
+            const std::string& element) {
   if (!law.f) return Jet(0.0);
   std::array<Jet, kMaxLawArgs> x;
   const size_t n = law.args.size();
   for (size_t k = 0; k < n; ++k) x[k] = quantity_jet(m, law.args[k], q0, q1, dq0, dq1);
-  const Jet f = law.f(std::span<const Jet>(x.data(), n), Jet(t));
+  const Jet f = call_law(law, std::span<const Jet>(x.data(), n), t, role, element);
   return {f.v, f.d, 0};
 }
 
@@ -132,7 +133,7 @@ double spring_tension_derivative(const Model& m, const SpringLoad& s, const Dist
                                  const VecRef& dq1, double t, double& T) {
   Jet tj;
   if (s.tension) {
-    tj = law_jet(m, s.tension, q0, q1, dq0, dq1, t);
+    tj = law_jet(m, s.tension, q0, q1, dq0, dq1, t, "tension of spring", s.name);
   } else {
     const double dl = st.l - s.rest_length;
     if ((s.acts == SpringActs::tension_only && dl <= 0) ||
@@ -157,14 +158,16 @@ void body_applied_derivative(const Model& m, const VecRef& q0, const VecRef& q1,
                              const VecRef& dq1, double t, Eigen::Ref<Eigen::VectorXd> dlocal) {
   dlocal.setZero();  // gravity is constant
   for (const auto& f : m.forces) {
-    const Jet fx = f.fx ? law_jet(m, f.fx, q0, q1, dq0, dq1, t) : Jet(0.0);
-    const Jet fy = f.fy ? law_jet(m, f.fy, q0, q1, dq0, dq1, t) : Jet(0.0);
+    const Jet fx = f.fx ? law_jet(m, f.fx, q0, q1, dq0, dq1, t, "force", f.name) : Jet(0.0);
+    const Jet fy = f.fy ? law_jet(m, f.fy, q0, q1, dq0, dq1, t, "force", f.name) : Jet(0.0);
     const Vec2 dF(f.cos * fx.d - f.sin * fy.d, f.sin * fx.d + f.cos * fy.d);
     add_body_point_force(m, BodyPoint{f.body, f.ci, f.cj, f.gamma, f.rho, Vec2(0, 0)}, dF,
                          dlocal.data());
   }
   for (const auto& tq : m.torques)
-    if (tq.torque) add_torque(m, tq.body, law_jet(m, tq.torque, q0, q1, dq0, dq1, t).d, dlocal);
+    if (tq.torque)
+      add_torque(m, tq.body, law_jet(m, tq.torque, q0, q1, dq0, dq1, t, "torque", tq.name).d,
+                 dlocal);
   for (const auto& s : m.springs) {  // T e on a, -T e on b
     const DistanceJet st =
         distance_jet(point_jet(m, s.a, q0, q1, dq0, dq1), point_jet(m, s.b, q0, q1, dq0, dq1));
@@ -177,7 +180,7 @@ void body_applied_derivative(const Model& m, const VecRef& q0, const VecRef& q1,
   for (const auto& l : m.torsional_springs) {
     double dtau = 0;
     if (l.torque) {
-      dtau = law_jet(m, l.torque, q0, q1, dq0, dq1, t).d;
+      dtau = law_jet(m, l.torque, q0, q1, dq0, dq1, t, "torque of torsional spring", l.name).d;
     } else {
       const Jet th = theta_jet(m, l.body2, q0, dq0) - theta_jet(m, l.body1, q0, dq0);
       const Jet w = omega_jet(m, l.body2, q1, dq1) - omega_jet(m, l.body1, q1, dq1);
@@ -194,8 +197,8 @@ double load_power_derivative(const Model& m, const VecRef& q0, const VecRef& q1,
                              const VecRef& dq1, double t) {
   double dp = 0;
   for (const auto& f : m.forces) {
-    const Jet fx = f.fx ? law_jet(m, f.fx, q0, q1, dq0, dq1, t) : Jet(0.0);
-    const Jet fy = f.fy ? law_jet(m, f.fy, q0, q1, dq0, dq1, t) : Jet(0.0);
+    const Jet fx = f.fx ? law_jet(m, f.fx, q0, q1, dq0, dq1, t, "force", f.name) : Jet(0.0);
+    const Jet fy = f.fy ? law_jet(m, f.fy, q0, q1, dq0, dq1, t, "force", f.name) : Jet(0.0);
     const Vec2 F(f.cos * fx.v - f.sin * fy.v, f.sin * fx.v + f.cos * fy.v);
     const Vec2 dF(f.cos * fx.d - f.sin * fy.d, f.sin * fx.d + f.cos * fy.d);
     const PointJet p =
@@ -204,7 +207,7 @@ double load_power_derivative(const Model& m, const VecRef& q0, const VecRef& q1,
   }
   for (const auto& tq : m.torques) {
     if (!tq.torque) continue;
-    const Jet tau = law_jet(m, tq.torque, q0, q1, dq0, dq1, t);
+    const Jet tau = law_jet(m, tq.torque, q0, q1, dq0, dq1, t, "torque", tq.name);
     const Jet w = omega_jet(m, tq.body, q1, dq1);
     dp += tau.d * w.v + tau.v * w.d;
   }
@@ -218,7 +221,7 @@ double load_power_derivative(const Model& m, const VecRef& q0, const VecRef& q1,
   }
   for (const auto& l : m.torsional_springs) {
     if (!l.torque) continue;
-    const Jet tau = law_jet(m, l.torque, q0, q1, dq0, dq1, t);
+    const Jet tau = law_jet(m, l.torque, q0, q1, dq0, dq1, t, "torque of torsional spring", l.name);
     const Jet w = omega_jet(m, l.body2, q1, dq1) - omega_jet(m, l.body1, q1, dq1);
     dp += tau.d * w.v + tau.v * w.d;
   }

@@ -4,10 +4,12 @@
 #include <sstream>
 
 #include "constraints/common.hpp"
+#include "dynamics/derivatives.hpp"
 #include "dynamics/points.hpp"
 #include "mo2d/error.hpp"
 #include "mo2d/model.hpp"
 #include "run/format.hpp"
+#include "run/user_code.hpp"
 
 namespace mo2d {
 namespace {
@@ -66,6 +68,15 @@ double quantity_value(const Model& m, const Quantity& q,
   return 0;
 }
 
+namespace detail {
+
+Jet call_law(const CompiledLaw& law, std::span<const Jet> x, double t, const char* role,
+             const std::string& element) {
+  return call_user_code([&] { return law.f(x, Jet(t)); }, role, element, t);
+}
+
+}  // namespace detail
+
 double law_value(const Model& m, const CompiledLaw& law,
                  const Eigen::Ref<const Eigen::VectorXd>& q0,
                  const Eigen::Ref<const Eigen::VectorXd>& q1, double t, const char* role,
@@ -74,7 +85,7 @@ double law_value(const Model& m, const CompiledLaw& law,
   std::array<Jet, kMaxLawArgs> x;
   const size_t n = law.args.size();
   for (size_t k = 0; k < n; ++k) x[k] = Jet(quantity_value(m, law.args[k], q0, q1));
-  const double v = law.f(std::span<const Jet>(x.data(), n), Jet(t)).v;
+  const double v = detail::call_law(law, std::span<const Jet>(x.data(), n), t, role, element).v;
   if (std::isfinite(v)) return v;
   std::ostringstream s;
   s << role << " '" << element << "' is not finite at t = " << detail::fmt(t) << " s";

@@ -27,7 +27,8 @@ void energy_rate_jacobian(ForwardData& d, double t, const VectorXd& q0, const Ve
     const bool along_q0 = k < m.n0;
     (along_q0 ? dq0[k] : dq1[k - m.n0]) = 1;
     for (int j = 0; j < m.n_inputs(); ++j)
-      du[j] = law_jet(m, d.effort_laws[j], q0, q1, dq0, dq1, t).d;
+      du[j] =
+          law_jet(m, d.effort_laws[j], q0, q1, dq0, dq1, t, "effort of input", m.inputs[j].label).d;
     Bdu.noalias() = d.B * du;
     da = along_q0 ? J.da_dq0.col(k) : J.da_dq1.col(k - m.n0);
     for (size_t r = 0; r < terms.size(); ++r) {

@@ -34,10 +34,13 @@ struct CvodeUser {
   bool baumgarte = false;
   std::string last_error;  // message of the last failed right-hand side evaluation
   RunBudget* budget = nullptr;
-  void* mem = nullptr;               // the CVODE solver (step counts for the budget)
-  std::exception_ptr out_of_budget;  // thrown by the budget inside the right-hand side
-  AccelerationJacobian jac;          // the last Newton matrix's d a1 / d (q0, q1)
-  MatrixXd energy_rows;              // its energy rows: d rates / d (q0, q1), terms x (n0 + n1)
+  void* mem = nullptr;  // the CVODE solver (step counts for the budget)
+  // thrown inside a callback and kept to be rethrown once CVode has returned (no exception may
+  // unwind through CVODE's C frames): the budget's Error, the monitor's own, or a failure of user
+  // code (guarded)
+  std::exception_ptr kept;
+  AccelerationJacobian jac;  // the last Newton matrix's d a1 / d (q0, q1)
+  MatrixXd energy_rows;      // its energy rows: d rates / d (q0, q1), terms x (n0 + n1)
 };
 
 // The budget is checked at every right-hand side evaluation (a single output interval can take
@@ -51,29 +54,53 @@ bool budget_ok(CvodeUser* u) {
   try {
     u->budget->check(t, steps, h);
   } catch (...) {  // the budget's Error, or the monitor's own: not through CVODE's C frames
-    u->out_of_budget = std::current_exception();
+    u->kept = std::current_exception();
     return false;
   }
   return true;
 }
 
-// y' = (q1.head(n0), a1, energy rates) at (t, y) into out: 0, or 1 (recoverable: the message in
-// last_error).
+// f() inside a CVODE callback, no exception leaving it: an Error of the state (a value not
+// finite, a singular solve) returns 1, recoverable (CVODE retries with a smaller step; the
+// message in last_error); any other exception, and an Error that carries one (user code inside a
+// law, nested by call_law: a Python callable's exception, which a retry would only raise again),
+// is kept (CvodeUser::kept) and returns -1, unrecoverable: run_cvode rethrows it. Once one is
+// kept every later callback returns -1 at once: CVODE does not always stop at the first -1 (with
+// SUNDIALS 6.4.1, cvode_adams' fixed-point solver retried the step with smaller and smaller
+// steps), and the failing code must not be called again.
+template <class F>
+int guarded(CvodeUser* u, F&& f) {
+  if (u->kept) return -1;
+  try {
+    return f();
+  } catch (const Error& e) {
+    const auto* nested = dynamic_cast<const std::nested_exception*>(&e);
+    if (nested == nullptr || !nested->nested_ptr()) {
+      u->last_error = e.what();
+      return 1;
+    }
+    u->kept = std::current_exception();
+  } catch (...) {
+    u->kept = std::current_exception();
+  }
+  return -1;
+}
+
+// y' = (q1.head(n0), a1, energy rates) at (t, y) into out: 0, 1 (recoverable: the message in
+// last_error) or -1 (an exception kept: guarded).
 int evaluate_rhs(CvodeUser* u, double t, const double* yd, double* out) {
   const Model& m = *u->m;
   u->q0 = Eigen::Map<const VectorXd>(yd, m.n0);
   u->q1 = Eigen::Map<const VectorXd>(yd + m.n0, m.n1);
-  try {
-    u->d->accelerations(t, u->q0, u->q1, u->baumgarte);
-  } catch (const Error& e) {
-    u->last_error = e.what();
-    return 1;  // recoverable: CVODE retries with a smaller step
-  }
+  double rates[kEnergyTerms];
+  if (const int flag = guarded(u, [&] {
+        u->d->accelerations(t, u->q0, u->q1, u->baumgarte);
+        energy_rates(*u->d, t, u->q0, u->q1, rates);
+        return 0;
+      }))
+    return flag;
   Eigen::Map<VectorXd>(out, m.n0) = u->q1.head(m.n0);
   Eigen::Map<VectorXd>(out + m.n0, m.n1) = u->d->a;
-
-  double rates[kEnergyTerms];
-  energy_rates(*u->d, t, u->q0, u->q1, rates);
   for (size_t k = 0; k < u->terms.size(); ++k) out[m.n0 + m.n1 + k] = rates[u->terms[k]];
   for (int k = 0; k < m.n1; ++k)
     if (!std::isfinite(u->d->a[k])) {  // recoverable: a shorter step may stay in range
@@ -122,15 +149,16 @@ int cv_jac(realtype t, N_Vector y, N_Vector fy, SUNMatrix J, void* user, N_Vecto
   u->q0 = Eigen::Map<const VectorXd>(yd, m.n0);
   u->q1 = Eigen::Map<const VectorXd>(yd + m.n0, m.n1);
   const long regularized = u->d->stats.regularized_evaluations;
-  try {
-    acceleration_jacobian(*u->d, t, u->q0, u->q1, u->jac);
-    if (u->jac.singular || u->d->stats.regularized_evaluations > regularized)
-      return difference_quotients(u, t, y, fy, J);
-    energy_rate_jacobian(*u->d, t, u->q0, u->q1, u->jac, u->terms, u->energy_rows);
-  } catch (const Error& e) {
-    u->last_error = e.what();
-    return 1;  // recoverable: CVODE retries with a smaller step
-  }
+  bool quotients = false;
+  if (const int flag = guarded(u, [&] {
+        acceleration_jacobian(*u->d, t, u->q0, u->q1, u->jac);
+        quotients = u->jac.singular || u->d->stats.regularized_evaluations > regularized;
+        if (!quotients)
+          energy_rate_jacobian(*u->d, t, u->q0, u->q1, u->jac, u->terms, u->energy_rows);
+        return 0;
+      }))
+    return flag;
+  if (quotients) return difference_quotients(u, t, y, fy, J);
   if (!u->jac.da_dq0.allFinite() || !u->jac.da_dq1.allFinite()) {
     u->last_error = "the Jacobian of the accelerations is not finite at t = " + fmt(t) + " s";
     return 1;
@@ -161,7 +189,11 @@ int cv_proj(realtype t, N_Vector ycur, N_Vector corr, realtype eps, N_Vector err
   // step look inaccurate and drives the step size to zero. (eps: CVODE's projection tolerance.)
   (void)eps;
   const double tol = std::max(1e-3 * d.o.atol, 4e-16 * m.scale);
-  d.project(t, q0, q1, tol, tol);
+  if (const int flag = guarded(u, [&] {
+        d.project(t, q0, q1, tol, tol);
+        return 0;
+      }))
+    return flag;
   Eigen::Map<VectorXd>(c, m.n0) = q0 - q0s;
   Eigen::Map<VectorXd>(c + m.n0, m.n1) = q1 - q1s;
 
@@ -187,7 +219,13 @@ int cv_root(realtype t, N_Vector y, realtype* g, void* user) {
   const double* yd = N_VGetArrayPointer(y);
   const VectorXd q0 = Eigen::Map<const VectorXd>(yd, m.n0);
   const VectorXd q1 = Eigen::Map<const VectorXd>(yd + m.n0, m.n1);
-  g[0] = u->d->o.stop_when(t, q0, q1);
+  if (u->kept) return -1;
+  try {
+    g[0] = u->d->o.stop_when(t, q0, q1);
+  } catch (...) {  // kept, rethrown by run_cvode (a root function's failure is unrecoverable)
+    u->kept = std::current_exception();
+    return -1;
+  }
   return 0;
 }
 
@@ -294,7 +332,7 @@ void run_cvode(const Model& m, ForwardData& d, const State& s0, const ForwardOpt
     check_flag(CVodeSetMaxNumSteps(mem, std::max(1L, o.max_steps - taken)), "CVodeSetMaxNumSteps",
                t);
     int flag = CVode(mem, t_out, y, &t, CV_NORMAL);
-    if (user.out_of_budget) std::rethrow_exception(user.out_of_budget);
+    if (user.kept) std::rethrow_exception(user.kept);
     CVodeGetNumSteps(mem, &taken);
     if (flag == CV_TOO_MUCH_WORK && taken >= o.max_steps) {
       double h = 0;

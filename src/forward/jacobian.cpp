@@ -64,7 +64,9 @@ bool direction_rhs(ForwardData& d, double t, const VectorXd& q0, const VectorXd&
   w.df.setZero();
   scatter_local(m, w.dlocal, w.df);
   for (int k = 0; k < m.n_inputs(); ++k)
-    w.du[k] = detail::law_jet(m, d.effort_laws[k], q0, q1, dq0, dq1, t).d;
+    w.du[k] = detail::law_jet(m, d.effort_laws[k], q0, q1, dq0, dq1, t, "effort of input",
+                              m.inputs[k].label)
+                  .d;
   w.r1 = w.df;
   if (m.n_inputs() > 0) w.r1.noalias() += d.B * w.du;
   bool exact = true;

@@ -22,6 +22,7 @@
 #include "run/cpu_time.hpp"
 #include "run/format.hpp"
 #include "run/run_budget.hpp"
+#include "run/user_code.hpp"
 
 namespace mo2d {
 
@@ -244,7 +245,8 @@ void prescribed_motion(const Model& m, InverseData& d, double t) {
   const int dof = m.dof;
   // prescribed motion, exact derivatives
   for (int k = 0; k < dof; ++k) {
-    const Jet s = d.p_motion[k](Jet(t, 1, 0));
+    const Jet s = detail::call_user_code([&] { return d.p_motion[k](Jet(t, 1, 0)); },
+                                         "prescribed motion of", d.p_labels[k], t);
     if (!std::isfinite(s.v) || !std::isfinite(s.d) || !std::isfinite(s.dd))
       throw Error("prescribed motion of '" + d.p_labels[k] + "' is not finite at t = " + fmt(t),
                   d.p_labels[k], t);

@@ -1,0 +1,73 @@
+"""Runs of a scene with run settings given in Python (docs/python.md, "Run settings").
+
+mo2d.forward(scene, duration=2, integrator="rk4") is `mo2d forward SCENE --duration 2
+--integrator rk4`: each setting is a key of the scene's run: block that the command line may
+override (mo2d/scene.hpp, RunOverride), passed as the text the command line would pass and applied
+by the scene parser on top of the scene's own run: block, so every value goes through the same
+checks and a refusal is the same mo2d.Error ("--duration: run.duration: must be > 0 s"). A
+setting left at None keeps the scene's value.
+"""
+
+import numbers
+
+from . import _mo2d
+
+# The keys `mo2d inverse` and `mo2d forward` take (apps/scene_options.cpp, RunFlags).
+BUDGET_KEYS = ("max_steps", "max_seconds", "max_memory")
+INVERSE_KEYS = ("t0", "duration", "samples", "tolerance") + BUDGET_KEYS
+FORWARD_KEYS = ("t0", "duration", "samples", "integrator", "formulation", "rtol", "atol",
+                "step") + BUDGET_KEYS
+ALL_KEYS = tuple(dict.fromkeys(INVERSE_KEYS + FORWARD_KEYS))
+
+
+def _text(key, value):
+    """A run setting as the command line writes it: an int as is, a float in its shortest exact
+    form, a string as it is (a name, or an expression of the parameters)."""
+    if isinstance(value, bool):
+        raise TypeError(f"run setting {key}: a number or a string, not a bool")
+    if isinstance(value, str):
+        return value
+    if isinstance(value, numbers.Integral):
+        return str(int(value))
+    if isinstance(value, numbers.Real):
+        return repr(float(value))
+    raise TypeError(f"run setting {key}: a number or a string, not {type(value).__name__}")
+
+
+def run_overrides(settings, keys=None):
+    """{"duration": 2.0, "step": None} -> [("duration", "2.0")] (None: not given), in order;
+    keys: the keys allowed (a ValueError names any other)."""
+    if settings is None:
+        return []
+    items = settings.items() if hasattr(settings, "items") else settings
+    out = []
+    for key, value in items:
+        if keys is not None and key not in keys:
+            raise ValueError(f"'{key}' is not a run setting of this run (one of {', '.join(keys)})")
+        if value is not None:
+            out.append((str(key), _text(key, value)))
+    return out
+
+
+def _with(scene, settings, keys):
+    run = run_overrides(settings, keys)
+    return scene.with_run(run) if run else scene
+
+
+def inverse(scene, *, t0=None, duration=None, samples=None, tolerance=None, max_steps=None,
+            max_seconds=None, max_memory=None):
+    """Inverse dynamics of a scene, as `mo2d inverse` runs it (no files written); the run
+    settings given replace the scene's (`mo2d inverse --duration ...`)."""
+    settings = dict(t0=t0, duration=duration, samples=samples, tolerance=tolerance,
+                    max_steps=max_steps, max_seconds=max_seconds, max_memory=max_memory)
+    return _mo2d._inverse(_with(scene, settings, INVERSE_KEYS))
+
+
+def forward(scene, *, t0=None, duration=None, samples=None, integrator=None, formulation=None,
+            rtol=None, atol=None, step=None, max_steps=None, max_seconds=None, max_memory=None):
+    """Forward dynamics of a scene from its initial state, as `mo2d forward` runs it; the run
+    settings given replace the scene's (`mo2d forward --integrator rk4 --step 1e-4 ...`)."""
+    settings = dict(t0=t0, duration=duration, samples=samples, integrator=integrator,
+                    formulation=formulation, rtol=rtol, atol=atol, step=step,
+                    max_steps=max_steps, max_seconds=max_seconds, max_memory=max_memory)
+    return _mo2d._forward(_with(scene, settings, FORWARD_KEYS))

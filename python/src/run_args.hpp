@@ -1,0 +1,34 @@
+#pragma once
+// Arguments of the runs of a Python-built System (bind_runs.cpp): names of integrators and
+// formulations, motions and efforts from Python values (laws.hpp), shared by the whole runs and
+// the workspaces (bind_workspace.cpp).
+#include <pybind11/pybind11.h>
+
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "laws.hpp"
+#include "mo2d/forward.hpp"
+#include "mo2d/inverse.hpp"
+
+namespace mo2d::py_bind {
+
+using Motions = std::vector<std::pair<std::string, pybind11::object>>;  // label -> Python value
+
+// "rk4" -> Integrator::rk4 (to_string's names); another name is an Error listing them.
+Integrator to_integrator(const std::string& s);
+Formulation to_formulation(const std::string& s);
+// [(coordinate, s(t))]: expressions of t or callables returning (s, s', s'') (to_motion).
+std::vector<Prescribed> to_motions(const Motions& motion, const Params& params);
+// [(input label, law)] ordered like Model::inputs (an input without a law: none, zero); a label
+// the model does not have is an Error naming it.
+EffortLaws to_efforts(const Model& m, const Motions& efforts, const Params& params);
+
+// ForwardWorkspace, InverseWorkspace, energy balance, tables, controllers, transmissions and the
+// System's gears, racks and constraints (bind_workspace.cpp, bind_extras.cpp); called by
+// bind_runs.
+void bind_workspace(pybind11::module_& m);
+void bind_extras(pybind11::module_& m);
+
+}  // namespace mo2d::py_bind
