@@ -113,6 +113,7 @@ std::string forward_summary(const SceneOptions& o, const Scene& s, const Model& 
   j["integrator"] = {{"steps", r.stats.steps},
                      {"rhs_evaluations", r.stats.rhs_evaluations},
                      {"projections", r.stats.projections},
+                     {"linear_algebra", r.stats.sparse ? "sparse" : "dense"},
                      {"stopped_by_event", r.stats.stopped_by_event},
                      {"t_end", r.stats.t_end},
                      {"warnings", r.stats.warnings}};

@@ -52,9 +52,11 @@ void print_forward_table(const Model& model, const Trajectory& r, const ForwardO
       "  %d bodies, %d coordinates, %d quasi-velocities, %d DOF, %d samples over [%g, %g] s\n",
       static_cast<int>(model.bodies.size()), model.n0, model.n1, model.dof,
       static_cast<int>(r.time.size()), run.t0, r.stats.t_end);
-  std::printf("  integrator %s, formulation %s: %ld steps, %ld right-hand sides, %ld projections\n",
-              to_string(run.integrator), to_string(run.formulation), r.stats.steps,
-              r.stats.rhs_evaluations, r.stats.projections);
+  std::printf(
+      "  integrator %s, formulation %s, %s linear algebra: %ld steps, %ld right-hand sides, %ld "
+      "projections\n",
+      to_string(run.integrator), to_string(run.formulation), r.stats.sparse ? "sparse" : "dense",
+      r.stats.steps, r.stats.rhs_evaluations, r.stats.projections);
   std::printf("  max constraint residual: position %.2e m, velocity %.2e\n",
               r.residuals.col(0).maxCoeff(), r.residuals.col(1).maxCoeff());
   const Eigen::Index n = r.time.size() - 1;

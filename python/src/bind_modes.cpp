@@ -34,8 +34,8 @@ struct Subject {
 
 Subject subject_of(const py::object& x, const Efforts& efforts, const Params& params) {
   Subject s;
-  if (py::isinstance<Scene>(x)) {
-    const auto& scene = x.cast<const Scene&>();
+  if (py::isinstance<SourcedScene>(x)) {
+    const Scene& scene = x.cast<const SourcedScene&>();
     BuildOptions b;
     b.max_memory = scene.run.max_memory;
     s.model = std::make_shared<Model>(build_scene_model(scene, b));

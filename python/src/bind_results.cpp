@@ -88,6 +88,7 @@ py::dict stats(const RunStats& s, const std::vector<std::string>& warnings) {
   d["t_end"] = s.t_end;
   d["min_pivot_ratio"] = s.min_pivot_ratio;
   d["max_drift"] = s.max_drift;
+  d["linear_algebra"] = s.sparse ? "sparse" : "dense";
   return d;
 }
 

@@ -21,8 +21,6 @@ namespace mo2d::py_bind {
 
 namespace {
 
-using Overrides = std::vector<std::pair<std::string, std::string>>;
-
 std::vector<ParameterOverride> to_overrides(const Overrides& set) {
   std::vector<ParameterOverride> out;
   for (const auto& [name, value] : set) out.push_back({name, value});
@@ -34,13 +32,6 @@ std::vector<RunOverride> to_run_overrides(const Overrides& run) {
   for (const auto& [key, value] : run) out.push_back({key, value});
   return out;
 }
-
-// A Scene with the text, the parameter and the run overrides it was read with, so that a run
-// with other settings reads the same text again (a file edited since is not read again).
-struct SourcedScene : Scene {
-  std::string text{};
-  Overrides set_overrides{}, run_overrides{};  // Scene::run: the settings they give
-};
 
 std::shared_ptr<SourcedScene> parse_sourced(std::string text, const std::string& file_name,
                                             const Overrides& set, const Overrides& run) {

@@ -43,6 +43,8 @@ ForwardWorkspace make_forward(const std::shared_ptr<Model>& model, const std::st
   o.integrator = to_integrator(integrator);
   o.formulation = to_formulation(formulation);
   o.penalty = penalty;
+  // the workspace shows its matrices (A, M, ...) as dense arrays: the dense path fills them
+  o.linear_algebra = LinearAlgebra::dense;
   o.efforts = to_efforts(*model, efforts, params);
   return {model, std::make_unique<ForwardData>(*model, o)};
 }

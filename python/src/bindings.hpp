@@ -10,14 +10,26 @@
 
 #include <memory>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "mo2d/model.hpp"
+#include "mo2d/scene.hpp"
 #include "mo2d/trajectory.hpp"
 
 namespace mo2d::py_bind {
 
 namespace py = pybind11;
+
+using Overrides = std::vector<std::pair<std::string, std::string>>;
+
+// mo2d.Scene: a Scene with the text, the parameter and the run overrides it was read with, so
+// that a run with other settings reads the same text again (a file edited since is not read
+// again). bind_scene.cpp.
+struct SourcedScene : Scene {
+  std::string text{};
+  Overrides set_overrides{}, run_overrides{};  // Scene::run: the settings they give
+};
 
 // The result of a run with the model that produced it and the warnings of the build.
 struct Result {
