@@ -12,6 +12,7 @@
 
 #include "constraints/constraints.hpp"
 #include "dynamics/reactions.hpp"
+#include "forward/alf_iterate.hpp"
 #include "forward/forward_run.hpp"
 #include "forward/sparse_engine.hpp"
 #include "kinematics/conditioning.hpp"
@@ -107,55 +108,6 @@ ForwardData::ForwardData(const Model& model, const ForwardOptions& opt) : m(mode
 }
 
 ForwardData::~ForwardData() = default;
-
-// The sparse path (sparse_engine.hpp): the vectors of the dense path, M and the products as
-// sparse matrices in the engine; the dense matrices stay empty.
-void ForwardData::init_sparse() {
-  col_scale = column_scaling(m);
-  pos_scale = col_scale.head(m.n0);
-  sparse_ = std::make_unique<detail::SparseEngine>(m, col_scale);
-  B = input_matrix(m);
-  b = c = r1 = lambda = lam_ls = VectorXd::Zero(m.m1);
-  f = Bu = rhs = a = ap = tmp0 = tmp1 = dq1 = w = VectorXd::Zero(m.n1);
-  ap = VectorXd::Zero(std::max(m.n1, m.m1));
-  u = VectorXd::Zero(m.n_inputs());
-  effort_laws.resize(m.n_inputs());
-  for (int k = 0; k < m.n_inputs() && k < static_cast<int>(o.efforts.size()); ++k)
-    effort_laws[k] = compile_law(m, o.efforts[k], "effort of input '" + m.inputs[k].label + "'",
-                                 m.inputs[k].label);
-  psi = VectorXd::Zero(m.m0);
-  dq0 = VectorXd::Zero(m.n0);
-  local = la = VectorXd::Zero(m.n_slots);
-  row_scale = VectorXd::Ones(m.m1);
-  pos_row_scale = VectorXd::Ones(m.m0);
-  eval_min_q0 = m.q0;
-  alpha = o.penalty > 0 ? o.penalty : 1e7 * sparse_->mass_scale;
-  edge_force.assign(detail::merge_edge_layout(m, edge_offset), 0.0);
-  reactions = VectorXd::Zero(m.n_reactions());
-  friction = friction_next = VectorXd::Zero(static_cast<int>(m.frictions.size()));
-}
-
-bool uses_sparse(const Model& m, const ForwardOptions& o) {
-  const bool can = o.formulation == Formulation::augmented_lagrangian &&
-                   (o.integrator == Integrator::rk4 || o.integrator == Integrator::dopri5 ||
-                    o.integrator == Integrator::baumgarte);
-  switch (o.linear_algebra) {
-    case LinearAlgebra::dense:
-      return false;
-    case LinearAlgebra::sparse:
-      if (!can)
-        throw Error(std::string("forward dynamics: linear_algebra sparse needs the augmented "
-                                "Lagrangian formulation and rk4, dopri5 or baumgarte (got ") +
-                        to_string(o.formulation) + ", " + to_string(o.integrator) +
-                        "): CVODE's Newton matrix, the Lagrange and the null-space "
-                        "formulations are dense",
-                    "linear_algebra");
-      return true;
-    case LinearAlgebra::automatic:
-      return can && m.n1 + m.m1 >= kSparseCrossover;
-  }
-  return false;
-}
 
 // u = the effort laws at (t, q0, q1): a law that reads the state is a feedback (a controller).
 void ForwardData::inputs(double t, const VectorXd& q0, const VectorXd& q1) {
@@ -315,62 +267,6 @@ void ForwardData::solve_formulation(double t, const VectorXd& q0) {
   }
 }
 
-namespace {
-
-// The augmented-Lagrangian iteration (Bayo and Garcia de Jalon) on the matrices of the dense or
-// the sparse path (A, M; solve: x = H^-1 x with H = M + alpha A^T N^2 A factorized), in residual
-// form, warm-started from the last accepted multipliers d.lambda: r1 = f + B u - M a - A^T lambda,
-// r2 = c - A a; H da = r1 + alpha A^T N^2 r2, a += da, lambda -= alpha N^2 (c - A a). Written on
-// the true residuals, the iteration also refines away the rounding of the (ill-conditioned) H
-// solves. It stops when converged or when the residual no longer halves: there the penalty
-// regularizes the constraint instead of enforcing it with unbounded multipliers (the caller flags
-// the result as inaccurate, accel_ok = false, so that an explicit integrator can step over this
-// instant). Returns the iterations; prev: the last relative residual.
-template <class MatA, class MatM, class Solve>
-int alf_iterate(const MatA& A, const MatM& M, Solve&& solve, ForwardData& d, double& prev) {
-  const int m1 = d.m.m1;
-  auto r2 = d.ap.head(m1);
-  d.a.setZero();
-  prev = INFINITY;
-  int it = 0;
-  // Both residuals are measured in dimensionless terms: the generalized forces as D r1 against
-  // D (f + B u) and D A^T lambda, the constraint rows as N r2 against N c plus a tenth of the
-  // accelerations D^-1 a (so that a state at rest, c = 0, is judged on the size of a).
-  auto inf_scaled = [](const VectorXd& v, const VectorXd& sc, bool divide) {
-    double x = 0;
-    for (Eigen::Index k = 0; k < v.size(); ++k)
-      x = std::max(x, std::abs(divide ? v[k] / sc[k] : v[k] * sc[k]));
-    return x;
-  };
-  for (; it < 40; ++it) {
-    d.tmp0 = d.rhs;
-    d.tmp0.noalias() -= M * d.a;
-    d.tmp1.noalias() = A.transpose() * d.lambda;
-    d.tmp0 -= d.tmp1;  // r1
-    r2 = d.c;
-    r2.noalias() -= A * d.a;
-    const double s1 =
-        inf_scaled(d.rhs, d.col_scale, false) + inf_scaled(d.tmp1, d.col_scale, false);
-    const double s2 =
-        inf_scaled(d.c, d.row_scale, false) + 0.1 * inf_scaled(d.a, d.col_scale, true);
-    const double e = std::max(inf_scaled(d.tmp0, d.col_scale, false) / (s1 + 1e-300),
-                              inf_scaled(r2, d.row_scale, false) / (s2 + 1e-300));
-    if (it > 0 && (e <= 1e-14 || e > 0.5 * prev)) break;
-    prev = e;
-    r2.array() *= d.row_scale.array().square();
-    d.tmp0.noalias() += d.alpha * A.transpose() * r2;
-    solve(d.tmp0);
-    d.a += d.tmp0;
-    r2 = d.c;
-    r2.noalias() -= A * d.a;
-    r2.array() *= d.row_scale.array().square();
-    d.lambda.noalias() -= d.alpha * r2;
-  }
-  return it;
-}
-
-}  // namespace
-
 void ForwardData::solve_augmented_lagrangian(double t, const VectorXd& q0) {
   // Away from singular configurations: a direct solve (exact up to rounding); by the Schur
   // complement with the constant M^-1 when M is positive definite, else of the KKT matrix.
@@ -402,35 +298,8 @@ void ForwardData::solve_augmented_lagrangian(double t, const VectorXd& q0) {
                 m.name, t);
   if (!lambda.allFinite()) lambda.setZero();
   double prev = INFINITY;
-  const int it = alf_iterate(
+  const int it = detail::alf_iterate(
       A, M, [this](VectorXd& x) { llt_H.solveInPlace(x); }, *this, prev);
-  stats.solver_iterations += it;
-  accel_residual = prev;
-  accel_ok = prev <= kAlfAccept;
-  ++stats.regularized_evaluations;
-  if (!lambda.allFinite()) lambda.setZero();
-}
-
-// The sparse path (sparse_engine.hpp), as the dense one: away from singular configurations (the
-// conditioning estimate of N A D at least kDirectAccept) the direct solve of the KKT system by
-// sparse LU; near one the augmented-Lagrangian iteration on the sparse H, which regularizes the
-// degenerate direction. (The iteration alone is not exact enough: it cannot resolve the
-// multipliers below about alpha eps / mass scale ~ 1e-9 relative.)
-void ForwardData::solve_sparse(double t, const VectorXd& q0) {
-  detail::SparseEngine& sp = *sparse_;
-  detail::SparseEngine::unit_row_scale(sp.A, col_scale, row_scale);
-  const double ratio = note_conditioning(t, q0, sp.conditioning(col_scale, row_scale));
-  ++stats.factorizations;
-  if (ratio >= kDirectAccept && sp.solve_kkt(rhs, c, row_scale, a, lambda)) return;
-  if (!sp.factor_H(alpha, row_scale))
-    throw Error("forward dynamics of '" + m.name +
-                    "': the mass matrix is not positive on the mechanism's motions at t = " +
-                    fmt(t) + " (a body without mass or inertia?)",
-                m.name, t);
-  if (!lambda.allFinite()) lambda.setZero();
-  double prev = INFINITY;
-  const int it = alf_iterate(
-      sp.A, sp.M, [&sp](VectorXd& x) { sp.solve_H(x); }, *this, prev);
   stats.solver_iterations += it;
   accel_residual = prev;
   accel_ok = prev <= kAlfAccept;
@@ -558,30 +427,6 @@ void ForwardData::project(double t, VectorXd& q0, VectorXd& q1, double tol_pos, 
   }
 }
 
-// The same projection on the sparse matrices: positions by sparse_engine.hpp's damped Newton,
-// velocities by the H of the new positions.
-void ForwardData::project_sparse(double t, VectorXd& q0, VectorXd& q1, double tol_pos,
-                                 double tol_vel) {
-  detail::SparseEngine& sp = *sparse_;
-  sp.project_positions(t, q0, alpha, pos_scale, tol_pos, psi);
-  if (m.m1 == 0) return;
-  sp.fill_velocity(q0, t, b);
-  bool factored = false;
-  for (int it = 0; it < 6; ++it) {
-    velocity_residual_into(q1, r1);
-    if (r1.lpNorm<Eigen::Infinity>() <= tol_vel) break;
-    if (!factored) {
-      detail::SparseEngine::unit_row_scale(sp.A, col_scale, row_scale);
-      sp.factor_H(alpha, row_scale);
-      factored = true;
-    }
-    r1.array() *= row_scale.array().square();
-    dq1.noalias() = -alpha * sp.A.transpose() * r1;
-    sp.solve_H(dq1);
-    q1 += dq1;
-  }
-}
-
 double ForwardData::pivot_indicator(double t, const VectorXd& q0) {
   fill_velocity_rows(t, q0);
   if (sparse_) {
@@ -589,45 +434,6 @@ double ForwardData::pivot_indicator(double t, const VectorXd& q0) {
     return sparse_->conditioning(col_scale, row_scale);
   }
   return row_conditioning();
-}
-
-void ForwardData::fill_velocity_rows(double t, const VectorXd& q0) {
-  if (sparse_)
-    sparse_->fill_velocity(q0, t, b);
-  else
-    velocity_jacobian(m, q0, t, A, b);
-}
-
-void ForwardData::velocity_residual_into(const VectorXd& q1, VectorXd& out) const {
-  if (sparse_)
-    out.noalias() = sparse_->A * q1;
-  else
-    out.noalias() = A * q1;
-  out -= b;
-}
-
-void ForwardData::fill_position_rows(double t, const VectorXd& q0) {
-  if (sparse_) {
-    sparse_->fill_position(q0, t, psi);
-    detail::SparseEngine::unit_row_scale(sparse_->Psi, pos_scale, pos_row_scale);
-  } else {
-    position_jacobian(m, q0, t, psi, Psi);
-    row_scale_of(Psi, pos_scale, pos_row_scale);
-  }
-}
-
-void ForwardData::mass_times(const VectorXd& x, VectorXd& out) const {
-  if (sparse_)
-    out.noalias() = sparse_->M * x;
-  else
-    out.noalias() = M * x;
-}
-
-MatrixXd ForwardData::dense_velocity_rows(double t, const VectorXd& q0) const {
-  MatrixXd J = MatrixXd::Zero(m.m1, m.n1);
-  VectorXd rhs1(m.m1);
-  velocity_jacobian(m, q0, t, J, rhs1);
-  return J;
 }
 
 const VectorXd& forward_accelerations(const Model& model, ForwardData& d, double t,

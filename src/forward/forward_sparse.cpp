@@ -1,0 +1,161 @@
+// Forward dynamics on the sparse path (ForwardOptions::linear_algebra; the matrices and
+// factorizations: sparse_engine.hpp): the workspace's set-up, the accelerations, the projection,
+// and the pieces the recorder and the integrators read on either path.
+#include <algorithm>
+#include <cmath>
+#include <memory>
+#include <string>
+
+#include "dynamics/reactions.hpp"
+#include "forward/alf_iterate.hpp"
+#include "forward/sparse_engine.hpp"
+#include "mo2d/dynamics.hpp"
+#include "mo2d/error.hpp"
+#include "mo2d/forward_data.hpp"
+#include "mo2d/kinematics.hpp"
+#include "run/format.hpp"
+
+namespace mo2d {
+
+using detail::fmt;
+
+// The sparse path (sparse_engine.hpp): the vectors of the dense path, M and the products as
+// sparse matrices in the engine; the dense matrices stay empty.
+void ForwardData::init_sparse() {
+  col_scale = column_scaling(m);
+  pos_scale = col_scale.head(m.n0);
+  sparse_ = std::make_unique<detail::SparseEngine>(m, col_scale);
+  B = input_matrix(m);
+  b = c = r1 = lambda = lam_ls = VectorXd::Zero(m.m1);
+  f = Bu = rhs = a = ap = tmp0 = tmp1 = dq1 = w = VectorXd::Zero(m.n1);
+  ap = VectorXd::Zero(std::max(m.n1, m.m1));
+  u = VectorXd::Zero(m.n_inputs());
+  effort_laws.resize(m.n_inputs());
+  for (int k = 0; k < m.n_inputs() && k < static_cast<int>(o.efforts.size()); ++k)
+    effort_laws[k] = compile_law(m, o.efforts[k], "effort of input '" + m.inputs[k].label + "'",
+                                 m.inputs[k].label);
+  psi = VectorXd::Zero(m.m0);
+  dq0 = VectorXd::Zero(m.n0);
+  local = la = VectorXd::Zero(m.n_slots);
+  row_scale = VectorXd::Ones(m.m1);
+  pos_row_scale = VectorXd::Ones(m.m0);
+  eval_min_q0 = m.q0;
+  alpha = o.penalty > 0 ? o.penalty : 1e7 * sparse_->mass_scale;
+  edge_force.assign(detail::merge_edge_layout(m, edge_offset), 0.0);
+  reactions = VectorXd::Zero(m.n_reactions());
+  friction = friction_next = VectorXd::Zero(static_cast<int>(m.frictions.size()));
+}
+
+bool uses_sparse(const Model& m, const ForwardOptions& o) {
+  const bool can = o.formulation == Formulation::augmented_lagrangian &&
+                   (o.integrator == Integrator::rk4 || o.integrator == Integrator::dopri5 ||
+                    o.integrator == Integrator::baumgarte);
+  switch (o.linear_algebra) {
+    case LinearAlgebra::dense:
+      return false;
+    case LinearAlgebra::sparse:
+      if (!can)
+        throw Error(std::string("forward dynamics: linear_algebra sparse needs the augmented "
+                                "Lagrangian formulation and rk4, dopri5 or baumgarte (got ") +
+                        to_string(o.formulation) + ", " + to_string(o.integrator) +
+                        "): CVODE's Newton matrix, the Lagrange and the null-space "
+                        "formulations are dense",
+                    "linear_algebra");
+      return true;
+    case LinearAlgebra::automatic:
+      return can && m.n1 + m.m1 >= kSparseCrossover;
+  }
+  return false;
+}
+
+// The sparse path (sparse_engine.hpp), as the dense one: away from singular configurations (the
+// conditioning estimate of N A D at least kDirectAccept) the direct solve of the KKT system by
+// sparse LU; near one the augmented-Lagrangian iteration on the sparse H, which regularizes the
+// degenerate direction. (The iteration alone is not exact enough: it cannot resolve the
+// multipliers below about alpha eps / mass scale ~ 1e-9 relative.)
+void ForwardData::solve_sparse(double t, const VectorXd& q0) {
+  detail::SparseEngine& sp = *sparse_;
+  detail::SparseEngine::unit_row_scale(sp.A, col_scale, row_scale);
+  const double ratio = note_conditioning(t, q0, sp.conditioning(col_scale, row_scale));
+  ++stats.factorizations;
+  if (ratio >= kDirectAccept && sp.solve_kkt(rhs, c, row_scale, a, lambda)) return;
+  if (!sp.factor_H(alpha, row_scale))
+    throw Error("forward dynamics of '" + m.name +
+                    "': the mass matrix is not positive on the mechanism's motions at t = " +
+                    fmt(t) + " (a body without mass or inertia?)",
+                m.name, t);
+  if (!lambda.allFinite()) lambda.setZero();
+  double prev = INFINITY;
+  const int it = detail::alf_iterate(
+      sp.A, sp.M, [&sp](VectorXd& x) { sp.solve_H(x); }, *this, prev);
+  stats.solver_iterations += it;
+  accel_residual = prev;
+  accel_ok = prev <= kAlfAccept;
+  ++stats.regularized_evaluations;
+  if (!lambda.allFinite()) lambda.setZero();
+}
+
+// The same projection on the sparse matrices: positions by sparse_engine.hpp's damped Newton,
+// velocities by the H of the new positions.
+void ForwardData::project_sparse(double t, VectorXd& q0, VectorXd& q1, double tol_pos,
+                                 double tol_vel) {
+  detail::SparseEngine& sp = *sparse_;
+  sp.project_positions(t, q0, alpha, pos_scale, tol_pos, psi);
+  if (m.m1 == 0) return;
+  sp.fill_velocity(q0, t, b);
+  bool factored = false;
+  for (int it = 0; it < 6; ++it) {
+    velocity_residual_into(q1, r1);
+    if (r1.lpNorm<Eigen::Infinity>() <= tol_vel) break;
+    if (!factored) {
+      detail::SparseEngine::unit_row_scale(sp.A, col_scale, row_scale);
+      sp.factor_H(alpha, row_scale);
+      factored = true;
+    }
+    r1.array() *= row_scale.array().square();
+    dq1.noalias() = -alpha * sp.A.transpose() * r1;
+    sp.solve_H(dq1);
+    q1 += dq1;
+  }
+}
+
+void ForwardData::fill_velocity_rows(double t, const VectorXd& q0) {
+  if (sparse_)
+    sparse_->fill_velocity(q0, t, b);
+  else
+    velocity_jacobian(m, q0, t, A, b);
+}
+
+void ForwardData::velocity_residual_into(const VectorXd& q1, VectorXd& out) const {
+  if (sparse_)
+    out.noalias() = sparse_->A * q1;
+  else
+    out.noalias() = A * q1;
+  out -= b;
+}
+
+void ForwardData::fill_position_rows(double t, const VectorXd& q0) {
+  if (sparse_) {
+    sparse_->fill_position(q0, t, psi);
+    detail::SparseEngine::unit_row_scale(sparse_->Psi, pos_scale, pos_row_scale);
+  } else {
+    position_jacobian(m, q0, t, psi, Psi);
+    row_scale_of(Psi, pos_scale, pos_row_scale);
+  }
+}
+
+void ForwardData::mass_times(const VectorXd& x, VectorXd& out) const {
+  if (sparse_)
+    out.noalias() = sparse_->M * x;
+  else
+    out.noalias() = M * x;
+}
+
+MatrixXd ForwardData::dense_velocity_rows(double t, const VectorXd& q0) const {
+  MatrixXd J = MatrixXd::Zero(m.m1, m.n1);
+  VectorXd rhs1(m.m1);
+  velocity_jacobian(m, q0, t, J, rhs1);
+  return J;
+}
+
+}  // namespace mo2d
