@@ -123,6 +123,7 @@ void ColumnProduct::build(const SparseRows& J) {
     for (int a = J.outerIndexPtr()[i]; a < J.outerIndexPtr()[i + 1]; ++a)
       cols[J.innerIndexPtr()[a]].emplace_back(i, a);
   std::vector<Eigen::Triplet<double>> t;
+  t.reserve(static_cast<std::size_t>(m) + 4 * static_cast<std::size_t>(J.nonZeros()));
   for (int i = 0; i < m; ++i) t.emplace_back(i, i, 0.0);
   for (const auto& col : cols)
     for (const auto& [ra, a] : col)
