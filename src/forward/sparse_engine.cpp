@@ -5,6 +5,7 @@
 #include <cmath>
 
 #include "constraints/constraints.hpp"
+#include "dynamics/points.hpp"
 #include "mo2d/dynamics.hpp"
 
 namespace mo2d::detail {
@@ -57,21 +58,38 @@ int index_of(const SparseCols& C, int r, int c) {
   return static_cast<int>(std::lower_bound(begin, end, r) - C.innerIndexPtr());
 }
 
-// the n x n mass matrix column by column (body_inertia of unit rates), only its nonzeros kept
+// The mass matrix body by body (body_inertia of mo2d/dynamics.hpp for one body at a time: a body
+// couples only the rates of its own nodes and its rotation), O(n) entries in O(n) time; the
+// entries of a variable that two bodies share are summed.
 SparseCols sparse_mass_matrix(const Model& m) {
   std::vector<Eigen::Triplet<double>> t;
-  VectorXd e = VectorXd::Zero(m.n1), local(m.n_slots), col(m.n1);
-  for (int k = 0; k < m.n1; ++k) {
-    e[k] = 1;
-    body_inertia(m, e, local);
-    e[k] = 0;
-    col.setZero();
-    scatter_local(m, local, col);
-    for (int i = 0; i < m.n1; ++i)
-      if (col[i] != 0) t.emplace_back(i, k, col[i]);
+  VectorXd e = VectorXd::Zero(m.n1);
+  std::vector<int> vars;
+  std::vector<double> l;
+  for (const Body& b : m.bodies) {
+    vars.clear();
+    for (const NodeRef& n : b.nodes)
+      if (n.var >= 0) vars.insert(vars.end(), {n.var, n.var + 1});
+    if (b.omega.var >= 0) vars.push_back(b.omega.var);
+    l.assign(b.slots(), 0.0);
+    for (const int k : vars) {
+      e[k] = 1;
+      std::fill(l.begin(), l.end(), 0.0);
+      const Vec2 acom = local_velocity_of_point(b, e, b.ci, b.cj, b.gamma, b.rho);
+      add_point_force(b, b.ci, b.cj, b.gamma, b.rho, b.mass * acom, l.data());
+      if (b.has_omega) l[b.slots() - 1] = b.inertia * omega_value(b.omega, e);
+      e[k] = 0;
+      for (const NodeRef& n : b.nodes) {
+        if (n.var < 0) continue;
+        t.emplace_back(n.var, k, l[2 * n.local]);
+        t.emplace_back(n.var + 1, k, l[2 * n.local + 1]);
+      }
+      if (b.omega.var >= 0) t.emplace_back(b.omega.var, k, l[b.slots() - 1]);
+    }
   }
   SparseCols M(m.n1, m.n1);
   M.setFromTriplets(t.begin(), t.end());
+  M.prune(0.0);  // exact zeros of the probing (a node without mass) are not entries
   return M;
 }
 
