@@ -98,10 +98,10 @@ BENCHMARK(BM_NFourBar)
     ->ArgsProduct({{2, 5, 10, 20, 40, 100}, {0, 1}})
     ->ArgNames({"N", "sparse"})
     ->Unit(benchmark::kMillisecond);
-// the sparse path alone further (a dense step takes about 16 s at N = 400)
+// the sparse path alone further (a dense step takes about 16 s at N = 400; at N = 1000 the dense
+// consistent_state of the set-up takes minutes)
 BENCHMARK(BM_NFourBar)
     ->Args({400, 1})
-    ->Args({1000, 1})
     ->ArgNames({"N", "sparse"})
     ->Unit(benchmark::kMillisecond);
 
