@@ -100,9 +100,6 @@ BENCHMARK(BM_NFourBar)
     ->Unit(benchmark::kMillisecond);
 // the sparse path alone further (a dense step takes about 16 s at N = 400; at N = 1000 the dense
 // consistent_state of the set-up takes minutes)
-BENCHMARK(BM_NFourBar)
-    ->Args({400, 1})
-    ->ArgNames({"N", "sparse"})
-    ->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_NFourBar)->Args({400, 1})->ArgNames({"N", "sparse"})->Unit(benchmark::kMillisecond);
 
 }  // namespace
