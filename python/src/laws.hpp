@@ -12,8 +12,9 @@
 //    of the callable along the direction asked (along_curve in laws.cpp); values are exact.
 //    Prescribed motions, which need s, s' and s'', are expressions or callables returning the
 //    three.
-// A callable is called with the GIL held (runs of a System keep it); an exception it raises
-// propagates out of the run unchanged.
+// A callable is called with the GIL held (runs of a System keep it); an exception it raises is
+// carried out of the run (across CVODE's C frames too) and raised again in Python with the
+// element and the time attached (docs/python.md, "Exceptions of Python code inside a run").
 #include <pybind11/pybind11.h>
 
 #include <map>
