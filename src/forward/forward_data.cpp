@@ -37,34 +37,47 @@ VectorXd regularized_normal_solve(const MatrixXd& J, const VectorXd& x, double e
 using detail::fmt;
 using detail::regularized_normal_solve;
 
+namespace {
+
+// The vectors of both paths (one evaluation, the projection, the reactions), the input matrix,
+// the compiled effort laws and the column scaling.
+void init_vectors(ForwardData& d) {
+  d.B = input_matrix(d.m);
+  d.b = d.c = d.r1 = d.lambda = d.lam_ls = VectorXd::Zero(d.m.m1);
+  d.f = d.Bu = d.rhs = d.a = d.ap = d.tmp0 = d.tmp1 = d.dq1 = d.w = VectorXd::Zero(d.m.n1);
+  d.u = VectorXd::Zero(d.m.n_inputs());
+  d.effort_laws.resize(d.m.n_inputs());
+  for (int k = 0; k < d.m.n_inputs() && k < static_cast<int>(d.o.efforts.size()); ++k)
+    d.effort_laws[k] = compile_law(
+        d.m, d.o.efforts[k], "effort of input '" + d.m.inputs[k].label + "'", d.m.inputs[k].label);
+  d.psi = VectorXd::Zero(d.m.m0);
+  d.dq0 = VectorXd::Zero(d.m.n0);
+  d.local = d.la = VectorXd::Zero(d.m.n_slots);
+  d.row_scale = VectorXd::Ones(d.m.m1);
+  d.pos_row_scale = VectorXd::Ones(d.m.m0);
+  d.col_scale = column_scaling(d.m);
+  d.pos_scale = d.col_scale.head(d.m.n0);
+  d.eval_min_q0 = d.m.q0;
+  d.edge_force.assign(detail::merge_edge_layout(d.m, d.edge_offset), 0.0);
+  d.reactions = VectorXd::Zero(d.m.n_reactions());
+  d.friction = d.friction_next = VectorXd::Zero(static_cast<int>(d.m.frictions.size()));
+}
+
+}  // namespace
+
 ForwardData::ForwardData(const Model& model, const ForwardOptions& opt) : m(model), o(opt) {
+  init_vectors(*this);
   if (uses_sparse(m, o)) {
     init_sparse();
     return;
   }
   M = mass_matrix(m);
-  B = input_matrix(m);
   A = MatrixXd::Zero(m.m1, m.n1);
   Psi = MatrixXd::Zero(m.m0, m.n0);
   H = MatrixXd::Zero(m.n1, m.n1);
-  b = c = VectorXd::Zero(m.m1);
-  f = Bu = rhs = a = ap = tmp0 = tmp1 = VectorXd::Zero(m.n1);
-  u = VectorXd::Zero(m.n_inputs());
-  effort_laws.resize(m.n_inputs());
-  for (int k = 0; k < m.n_inputs() && k < static_cast<int>(o.efforts.size()); ++k)
-    effort_laws[k] = compile_law(m, o.efforts[k], "effort of input '" + m.inputs[k].label + "'",
-                                 m.inputs[k].label);
-  lambda = VectorXd::Zero(m.m1);
-  psi = VectorXd::Zero(m.m0);
-  local = VectorXd::Zero(m.n_slots);
   An = MatrixXd::Zero(m.m1, m.n1);
   G1 = MatrixXd::Zero(m.m1, m.m1);
   lu_G1_ = std::make_unique<detail::SmallLU>(m.m1);
-  row_scale = VectorXd::Ones(m.m1);
-  pos_row_scale = VectorXd::Ones(m.m0);
-  col_scale = column_scaling(m);
-  pos_scale = col_scale.head(m.n0);
-  eval_min_q0 = m.q0;
   AMinv = MatrixXd::Zero(m.m1, m.n1);
   {
     // on the dimensionless D M D (D = col_scale): the test does not depend on units or size
@@ -96,15 +109,6 @@ ForwardData::ForwardData(const Model& model, const ForwardOptions& opt) : m(mode
   M0 = M.topLeftCorner(m.n0, m.n0);
   for (int k = 0; k < m.n0; ++k) M0(k, k) += 1e-6 * mscale / (pos_scale[k] * pos_scale[k]);
   W0 = MatrixXd::Zero(m.n0, m.n0);
-  dq0 = VectorXd::Zero(m.n0);
-  dq1 = VectorXd::Zero(m.n1);
-  r1 = VectorXd::Zero(m.m1);
-  edge_force.assign(detail::merge_edge_layout(m, edge_offset), 0.0);
-  reactions = VectorXd::Zero(m.n_reactions());
-  friction = friction_next = VectorXd::Zero(static_cast<int>(m.frictions.size()));
-  la = VectorXd::Zero(m.n_slots);
-  w = VectorXd::Zero(m.n1);
-  lam_ls = VectorXd::Zero(m.m1);
 }
 
 ForwardData::~ForwardData() = default;

@@ -19,31 +19,11 @@ namespace mo2d {
 
 using detail::fmt;
 
-// The sparse path (sparse_engine.hpp): the vectors of the dense path, M and the products as
-// sparse matrices in the engine; the dense matrices stay empty.
+// The sparse path (sparse_engine.hpp): M and the products as sparse matrices in the engine; the
+// dense matrices stay empty (the vectors: init_vectors).
 void ForwardData::init_sparse() {
-  col_scale = column_scaling(m);
-  pos_scale = col_scale.head(m.n0);
   sparse_ = std::make_unique<detail::SparseEngine>(m, col_scale);
-  B = input_matrix(m);
-  b = c = r1 = lambda = lam_ls = VectorXd::Zero(m.m1);
-  f = Bu = rhs = a = ap = tmp0 = tmp1 = dq1 = w = VectorXd::Zero(m.n1);
-  ap = VectorXd::Zero(std::max(m.n1, m.m1));
-  u = VectorXd::Zero(m.n_inputs());
-  effort_laws.resize(m.n_inputs());
-  for (int k = 0; k < m.n_inputs() && k < static_cast<int>(o.efforts.size()); ++k)
-    effort_laws[k] = compile_law(m, o.efforts[k], "effort of input '" + m.inputs[k].label + "'",
-                                 m.inputs[k].label);
-  psi = VectorXd::Zero(m.m0);
-  dq0 = VectorXd::Zero(m.n0);
-  local = la = VectorXd::Zero(m.n_slots);
-  row_scale = VectorXd::Ones(m.m1);
-  pos_row_scale = VectorXd::Ones(m.m0);
-  eval_min_q0 = m.q0;
   alpha = o.penalty > 0 ? o.penalty : 1e7 * sparse_->mass_scale;
-  edge_force.assign(detail::merge_edge_layout(m, edge_offset), 0.0);
-  reactions = VectorXd::Zero(m.n_reactions());
-  friction = friction_next = VectorXd::Zero(static_cast<int>(m.frictions.size()));
 }
 
 bool uses_sparse(const Model& m, const ForwardOptions& o) {
