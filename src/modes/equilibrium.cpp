@@ -18,6 +18,7 @@
 #include "mo2d/error.hpp"
 #include "mo2d/kinematics.hpp"
 #include "mo2d/modes.hpp"
+#include "modes/modes_internal.hpp"
 
 namespace mo2d {
 
@@ -37,15 +38,6 @@ State at_rest(const Model& m, const VectorXd& q0, double t) {
                     "cannot be at rest",
                 m.name, t);
   return s;
-}
-
-// The same independent coordinates as ss (for the line search of one Newton iteration).
-LinearizeOptions same_coordinates(const Model& m, const StateSpace& ss, LinearizeOptions o) {
-  o.coordinates.clear();
-  o.velocities.clear();
-  for (int k : ss.coordinate_vars) o.coordinates.push_back(m.coordinate_labels[k]);
-  for (int i = ss.p; i < ss.dof; ++i) o.velocities.push_back(m.rate_labels[ss.velocity_vars[i]]);
-  return o;
 }
 
 // |a| at rest in lengths (rotations times their body's size): the accelerations are a = dq1/dw x,
@@ -122,7 +114,7 @@ Equilibrium static_equilibrium(const Model& m, const VectorXd& q0_guess,
     VectorXd dz = -e.linear.G.bottomLeftCorner(dof, p).colPivHouseholderQr().solve(rE);
     const double size = scaled_size(m, e.linear, dz);
     if (size > o.max_step) dz *= o.max_step / size;
-    const LinearizeOptions fixed = same_coordinates(m, e.linear, lo);
+    const LinearizeOptions fixed = detail::same_coordinates(m, e.linear, lo);
     bool accepted = false;
     for (double alpha = 1; alpha > 1e-4 && !accepted; alpha /= 2) {
       try {

@@ -38,15 +38,6 @@ std::string short_number(double v) {
   return buf;
 }
 
-// The options with the coordinates and extra quasi-velocities of ss written out as labels.
-LinearizeOptions fixed_options(const Model& m, const StateSpace& ss, LinearizeOptions o) {
-  o.coordinates.clear();
-  o.velocities.clear();
-  for (int k : ss.coordinate_vars) o.coordinates.push_back(m.coordinate_labels[k]);
-  for (int i = ss.p; i < ss.dof; ++i) o.velocities.push_back(m.rate_labels[ss.velocity_vars[i]]);
-  return o;
-}
-
 // What the pivoting would choose at s (for the error message), or "" if nothing.
 std::string pivot_choice(const Model& m, const State& s) {
   try {
@@ -129,7 +120,7 @@ StateSpace along_step(const Model& m, const State& s, const LinearizeOptions& fi
     char c[96];
     std::snprintf(c, sizeof c, "are badly conditioned (conditioning %.3g < %.3g)", ss.conditioning,
                   fixed.min_conditioning);
-    lost_chart(m, s, first ? fixed : fixed_options(m, ss, fixed), c);
+    lost_chart(m, s, first ? fixed : detail::same_coordinates(m, ss, fixed), c);
   }
   return ss;
 }
@@ -146,7 +137,7 @@ std::vector<StateSpace> linearize_along(const Model& m, const std::vector<State>
       fixed.coordinates.push_back(m.coordinate_labels[k]);
   for (const State& s : reference) {
     out.push_back(along_step(m, s, fixed, out.empty() ? nullptr : &out.front()));
-    if (out.size() == 1) fixed = fixed_options(m, out.front(), o);
+    if (out.size() == 1) fixed = detail::same_coordinates(m, out.front(), o);
   }
   return out;
 }
@@ -200,7 +191,7 @@ std::vector<StateSpace> linearize_along(const Model& m, const Trajectory& r,
     for (Eigen::Index k = 0; k < r.efforts.cols(); ++k)
       held.forward.efforts.push_back(Law::constant(r.efforts(i, k)));
     out.push_back(along_step(m, states[i], held, out.empty() ? nullptr : &out.front()));
-    if (i == 0) held = fixed_options(m, out.front(), held);
+    if (i == 0) held = detail::same_coordinates(m, out.front(), held);
   }
   return out;
 }

@@ -220,4 +220,12 @@ void tangent_bases(const Model& m, const State& ref, StateSpace& ss) {
   if (any) ss.approximate += "; dq1/dz by central differences of A q1 - b";
 }
 
+LinearizeOptions same_coordinates(const Model& m, const StateSpace& ss, LinearizeOptions o) {
+  o.coordinates.clear();
+  o.velocities.clear();
+  for (int k : ss.coordinate_vars) o.coordinates.push_back(m.coordinate_labels[k]);
+  for (int i = ss.p; i < ss.dof; ++i) o.velocities.push_back(m.rate_labels[ss.velocity_vars[i]]);
+  return o;
+}
+
 }  // namespace mo2d::detail
