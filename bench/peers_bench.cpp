@@ -3,7 +3,9 @@
 // each row is one timed run of its own. Built only where MuJoCo is found (libmujoco-dev):
 //   cmake --build build --target mo2d_peers_bench && taskset -c 0 build/bench/mo2d_peers_bench
 // Options: --long adds the MuJoCo runs of 1.6 million steps (about 5 s each); --max-n N caps the
-// chain sizes of the second table (default 400; 1000 takes minutes: mo2d's dense model build).
+// chain sizes of the second table (default 400; the dense path is not run past N = 400); --csv
+// FILE writes the second table's costs (seconds) for the plot docs/img/n_scaling.png
+// (bench/scaling_plot.cpp).
 //
 // 1. IFToMM double four-bar, 10 s: error of the first crank tip at t = 10 s against the exact
 //    reference of shared/notes/peers.md (1-DOF parallelogram reduction, 40-digit arithmetic),
@@ -33,8 +35,10 @@
 #include <sstream>
 #include <stdexcept>
 #include <string>
+#include <vector>
 
 #include "box2d_world.hpp"
+#include "eval_cost.hpp"
 #include "mo2d/forward.hpp"
 #include "mo2d/kinematics.hpp"
 #include "mo2d/mo2d.hpp"
@@ -191,31 +195,58 @@ double timed(F&& f) {
   return cpu_seconds() - c0;
 }
 
-void step_costs(int max_n) {
-  std::printf("\n### N-four-bar: CPU per step (h = 2e-3) and model construction\n\n");
+struct ScaleRow {
+  int n = 0;
+  double dense = NAN, sparse = NAN, mj = NAN, b2 = NAN, eval_sparse = NAN, eval_dense = NAN;
+};
+
+void write_csv(const std::string& path, const std::vector<ScaleRow>& rows) {
+  std::ofstream f(path);
+  f << "N,mo2d_eval_sparse_s,mo2d_eval_dense_s,mo2d_rk4_step_sparse_s,mo2d_rk4_step_dense_s,"
+       "mujoco_step_s,box2d_step_s\n";
+  f.precision(6);
+  for (const ScaleRow& r : rows)
+    f << r.n << ',' << r.eval_sparse << ',' << r.eval_dense << ',' << r.sparse << ',' << r.dense
+      << ',' << r.mj << ',' << r.b2 << '\n';
+  if (!f) throw std::runtime_error("cannot write " + path);
+}
+
+void step_costs(int max_n, const std::string& csv) {
+  std::printf(
+      "\n### N-four-bar: CPU per step (h = 2e-3), per evaluation and model construction\n\n");
   std::printf(
       "| N | mo2d rk4 step, dense | mo2d rk4 step, sparse | MuJoCo step | Box2D step | mo2d sparse "
-      "/ MuJoCo | mo2d build | MuJoCo load |\n|---|---|---|---|---|---|---|---|\n");
-  for (int n : {2, 10, 40, 100, 400, 1000}) {
+      "/ MuJoCo | mo2d eval, sparse | mo2d eval, dense | mo2d build | MuJoCo load "
+      "|\n|---|---|---|---|---|---|---|---|---|---|\n");
+  std::vector<ScaleRow> rows;
+  for (int n : {2, 5, 10, 20, 40, 100, 400, 1000}) {
     if (n > max_n) break;
+    ScaleRow row{.n = n};
     Model m;
     const double build = timed([&] { m = build_model(n_fourbar(n)); });
     const State st = start_state(m);
     // budget: the dense step grows as N^3 (about 74 ms at N = 100): one step past N = 100
     const int steps = n <= 10 ? 200 : n <= 100 ? 5 : 1;
-    const double t_dense = n <= 400 ? mo2d_step_cost(m, st, steps, LinearAlgebra::dense) : NAN;
-    const double t_sparse = mo2d_step_cost(m, st, n <= 100 ? 200 : 20, LinearAlgebra::sparse);
-    const double t_mj = mujoco_step_cost(n, n <= 100 ? 2000 : 200);
+    if (n <= 400) row.dense = mo2d_step_cost(m, st, steps, LinearAlgebra::dense);
+    row.sparse = mo2d_step_cost(m, st, n <= 100 ? 200 : 20, LinearAlgebra::sparse);
+    row.eval_sparse = mo2d::bench::eval_cost(m, st, LinearAlgebra::sparse);
+    if (n <= 400) row.eval_dense = mo2d::bench::eval_cost(m, st, LinearAlgebra::dense);
+    row.mj = mujoco_step_cost(n, n <= 100 ? 2000 : 200);
     const double load = timed([&] { MjRun r(n, 2e-3); });
     Model mb = build_model(n_fourbar(n), {.reduction = Reduction::none});
-    const double t_b2 = box2d_step_cost(mb, start_state(mb), n <= 100 ? 2000 : 200);
-    char dense_step[32] = "not run";
-    if (std::isfinite(t_dense))
-      std::snprintf(dense_step, sizeof dense_step, "%.3g µs", 1e6 * t_dense);
-    std::printf("| %d | %s | %.3g µs | %.3g µs | %.3g µs | %.3g | %.3g ms | %.3g ms |\n", n,
-                dense_step, 1e6 * t_sparse, 1e6 * t_mj, 1e6 * t_b2, t_sparse / t_mj, 1e3 * build,
-                1e3 * load);
+    row.b2 = box2d_step_cost(mb, start_state(mb), n <= 100 ? 2000 : 200);
+    auto us = [](double t) {
+      char b[32] = "not run";
+      if (std::isfinite(t)) std::snprintf(b, sizeof b, "%.3g µs", 1e6 * t);
+      return std::string(b);
+    };
+    std::printf("| %d | %s | %s | %s | %s | %.3g | %s | %s | %.3g ms | %.3g ms |\n", n,
+                us(row.dense).c_str(), us(row.sparse).c_str(), us(row.mj).c_str(),
+                us(row.b2).c_str(), row.sparse / row.mj, us(row.eval_sparse).c_str(),
+                us(row.eval_dense).c_str(), 1e3 * build, 1e3 * load);
+    rows.push_back(row);
   }
+  if (!csv.empty()) write_csv(csv, rows);
 }
 
 }  // namespace
@@ -224,19 +255,22 @@ int main(int argc, char** argv) {
   std::setvbuf(stdout, nullptr, _IONBF, 0);
   bool long_runs = false;
   int max_n = 400;
+  std::string csv;
   for (int k = 1; k < argc; ++k) {
     if (std::strcmp(argv[k], "--long") == 0)
       long_runs = true;
     else if (std::strcmp(argv[k], "--max-n") == 0 && k + 1 < argc)
       max_n = std::atoi(argv[++k]);
+    else if (std::strcmp(argv[k], "--csv") == 0 && k + 1 < argc)
+      csv = argv[++k];
     else {
-      std::fprintf(stderr, "usage: mo2d_peers_bench [--long] [--max-n N]\n");
+      std::fprintf(stderr, "usage: mo2d_peers_bench [--long] [--max-n N] [--csv FILE]\n");
       return 2;
     }
   }
   try {
     speed_vs_error(long_runs);
-    step_costs(max_n);
+    step_costs(max_n, csv);
   } catch (const std::exception& e) {
     std::fprintf(stderr, "mo2d_peers_bench: %s\n", e.what());
     return 1;

@@ -11,6 +11,7 @@
 #include <sstream>
 
 #include "forward/forward_run.hpp"
+#include "kinematics/sparse_kinematics.hpp"
 #include "linalg/small_lu.hpp"
 #include "mo2d/dynamics.hpp"
 #include "mo2d/error.hpp"
@@ -174,6 +175,52 @@ namespace {
               element, t0);
 }
 
+// [A; E] q1 = [b; v]: the velocities given (E: their rows of the identity) and the constraints;
+// LU with partial pivoting, its pivot ratio the singularity test.
+VectorXd dense_velocities(const Model& m, const InitialConditions& ic, const VectorXd& q0,
+                          double t0) {
+  MatrixXd K = MatrixXd::Zero(m.n1, m.n1);
+  VectorXd b(m.m1), rhs(m.n1);
+  velocity_jacobian(m, q0, t0, K.topRows(m.m1), b);
+  rhs.head(m.m1) = b;
+  for (int k = 0; k < m.dof; ++k) {
+    K(m.m1 + k, m.rate(ic.velocities[k].first)) = 1.0;
+    rhs[m.m1 + k] = ic.velocities[k].second;
+  }
+  detail::SmallLU lu(m.n1);
+  if (lu.compute(K) < 1e-10) throw_dependent_velocities(m, ic, K.topRows(m.m1), b, t0);
+  lu.solve_in_place(rhs);
+  return rhs;
+}
+
+// The same system sparse, by KLU (large models: kinematics/sparse_kinematics.hpp); the error
+// path (dependent velocities) is the dense one.
+VectorXd sparse_velocities(const Model& m, const InitialConditions& ic, const VectorXd& q0,
+                           double t0) {
+  detail::SparseRowsK A;
+  VectorXd b(m.m1), rhs(m.n1), q1;
+  detail::sparse_velocity_jacobian(m, q0, t0, A, b);
+  std::vector<Eigen::Triplet<double>> t;
+  t.reserve(static_cast<std::size_t>(A.nonZeros()) + m.dof);
+  for (int i = 0; i < A.outerSize(); ++i)
+    for (detail::SparseRowsK::InnerIterator it(A, i); it; ++it)
+      t.emplace_back(i, static_cast<int>(it.col()), it.value());
+  rhs.head(m.m1) = b;
+  for (int k = 0; k < m.dof; ++k) {
+    t.emplace_back(m.m1 + k, m.rate(ic.velocities[k].first), 1.0);
+    rhs[m.m1 + k] = ic.velocities[k].second;
+  }
+  Eigen::SparseMatrix<double> K(m.n1, m.n1);
+  K.setFromTriplets(t.begin(), t.end());
+  K.makeCompressed();
+  if (detail::sparse_lu_solve(K, rhs, q1) < 1e-10) {
+    MatrixXd Ad(m.m1, m.n1);
+    velocity_jacobian(m, q0, t0, Ad, b);
+    throw_dependent_velocities(m, ic, Ad, b, t0);
+  }
+  return q1;
+}
+
 }  // namespace
 
 State consistent_state(const Model& m, const InitialConditions& ic, double t0) {
@@ -198,20 +245,12 @@ State consistent_state(const Model& m, const InitialConditions& ic, double t0) {
                     " given" + (list.empty() ? "" : " (" + list + ")"),
                 m.name, t0);
   }
-  MatrixXd K = MatrixXd::Zero(m.n1, m.n1);
-  VectorXd b(m.m1), rhs(m.n1);
-  velocity_jacobian(m, s.q0, t0, K.topRows(m.m1), b);
-  rhs.head(m.m1) = b;
-  for (int k = 0; k < m.dof; ++k) {
-    const auto& [label, value] = ic.velocities[k];
+  for (const auto& [label, value] : ic.velocities) {
     if (!std::isfinite(value)) throw Error("initial velocity '" + label + "' is not finite", label);
-    K(m.m1 + k, m.rate(label)) = 1.0;
-    rhs[m.m1 + k] = value;
+    m.rate(label);  // an unknown label: its error, in the order given
   }
-  detail::SmallLU lu(m.n1);
-  if (lu.compute(K) < 1e-10) throw_dependent_velocities(m, ic, K.topRows(m.m1), b, t0);
-  s.q1 = rhs;
-  lu.solve_in_place(s.q1);
+  s.q1 = detail::sparse_kinematics(m) ? sparse_velocities(m, ic, s.q0, t0)
+                                      : dense_velocities(m, ic, s.q0, t0);
   return s;
 }
 

@@ -329,14 +329,13 @@ bool SparseEngine::factor_H(double alpha, const VectorXd& row_scale) {
   refresh_A();
   w_m_.head(m_.m1) = row_scale.cwiseAbs2();
   H_.fill(A, M, w_m_, alpha);
-  if (!analysed_H_) llt_H_.analyzePattern(H_.C), analysed_H_ = true;
-  llt_H_.factorize(H_.C);
+  if (!analysed_H_) llt_H_.analyse(H_.C), analysed_H_ = true;
+  llt_H_.factorize_fixed(H_.C);
   return llt_H_.info() == Eigen::Success;
 }
 
 void SparseEngine::solve_H(VectorXd& x) {
-  tmp_n_ = llt_H_.solve(x);
-  x = tmp_n_;
+  llt_H_.solve_in_place(x);
 }
 
 double SparseEngine::conditioning(const VectorXd& col_scale, const VectorXd& row_scale) {
@@ -344,10 +343,10 @@ double SparseEngine::conditioning(const VectorXd& col_scale, const VectorXd& row
   refresh_A();
   tmp_n_ = col_scale.cwiseAbs2();
   G_.fill(A, tmp_n_, row_scale);
-  if (!analysed_G_) ldlt_G_.analyzePattern(G_.C), analysed_G_ = true;
-  ldlt_G_.factorize(G_.C);
+  if (!analysed_G_) ldlt_G_.analyse(G_.C), analysed_G_ = true;
+  ldlt_G_.factorize_fixed(G_.C);
   if (ldlt_G_.info() != Eigen::Success) return 0.0;
-  const auto D = ldlt_G_.vectorD();
+  const Eigen::VectorXd& D = ldlt_G_.diagonal();
   const double dmax = D.maxCoeff(), dmin = D.minCoeff();
   return dmax > 0 && dmin > 0 ? dmin / dmax : 0.0;
 }
@@ -358,10 +357,11 @@ void SparseEngine::least_squares(const VectorXd& x, double eps, VectorXd& lambda
   double dmax = 1.0;
   for (int i = 0; i < m_.m1; ++i) dmax = std::max(dmax, R_.C.valuePtr()[R_.diag_at[i]]);
   for (int i = 0; i < m_.m1; ++i) R_.C.valuePtr()[R_.diag_at[i]] += eps * dmax;
-  if (!analysed_R_) llt_R_.analyzePattern(R_.C), analysed_R_ = true;
-  llt_R_.factorize(R_.C);
+  if (!analysed_R_) llt_R_.analyse(R_.C), analysed_R_ = true;
+  llt_R_.factorize_fixed(R_.C);
   tmp_m_.noalias() = A * x;
-  lambda = llt_R_.solve(tmp_m_);
+  lambda = tmp_m_;
+  llt_R_.solve_in_place(lambda);
 }
 
 void SparseEngine::project_positions(double t, VectorXd& q0, double alpha,
@@ -375,13 +375,14 @@ void SparseEngine::project_positions(double t, VectorXd& q0, double alpha,
     unit_row_scale(Psi, pos_scale, pos_row_scale_);
     w_m_.head(m_.m0) = pos_row_scale_.cwiseAbs2();
     W0_.fill(Psi, M0, w_m_, alpha);
-    if (!analysed_W0_) llt_W0_.analyzePattern(W0_.C), analysed_W0_ = true;
-    llt_W0_.factorize(W0_.C);
+    if (!analysed_W0_) llt_W0_.analyse(W0_.C), analysed_W0_ = true;
+    llt_W0_.factorize_fixed(W0_.C);
     // dx = alpha Psi^T P^2 psi solved with W0; q0 -= dx
     pos_rhs_ = psi.cwiseProduct(w_m_.head(m_.m0));
     tmp_n0_.noalias() = Psi.transpose() * pos_rhs_;
     tmp_n0_ *= alpha;
-    dq0_ = llt_W0_.solve(tmp_n0_);
+    dq0_ = tmp_n0_;
+    llt_W0_.solve_in_place(dq0_);
     q0 -= dq0_;
     if (it == kSteps) return;  // the last iterate is not tested (the recorder judges the drift)
   }

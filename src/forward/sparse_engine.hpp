@@ -30,6 +30,7 @@
 #include <vector>
 
 #include "dynamics/reactions.hpp"
+#include "linalg/fixed_cholesky.hpp"
 #include "linalg/klu_lu.hpp"
 #include "mo2d/model.hpp"
 
@@ -112,8 +113,8 @@ class SparseEngine {
   KluLU lu_kkt_;
   Eigen::VectorXd kkt_x_, kkt_b_, kkt_r_;
   void build_kkt();
-  Eigen::SimplicialLLT<SparseCols> llt_H_, llt_W0_, llt_R_;
-  Eigen::SimplicialLDLT<SparseCols> ldlt_G_;
+  FixedCholesky<Eigen::SimplicialLLT<SparseCols>> llt_H_, llt_W0_, llt_R_;
+  FixedCholesky<Eigen::SimplicialLDLT<SparseCols>> ldlt_G_;
   Eigen::VectorXd ones_m1_, ones_n1_, w_m_, tmp_n_, tmp_n0_, tmp_m_, pos_row_scale_, pos_rhs_, dq0_;
   bool analysed_H_ = false, analysed_W0_ = false, analysed_G_ = false, analysed_R_ = false;
 

@@ -4,6 +4,7 @@
 #include <sstream>
 
 #include "kinematics/solve_positions.hpp"
+#include "kinematics/sparse_kinematics.hpp"
 #include "mo2d/error.hpp"
 #include "mo2d/kinematics.hpp"
 
@@ -41,6 +42,33 @@ detail::NewtonOptions assembly_newton(double tolerance) {
           .non_finite = detail::NonFinite::reject};
 }
 
+using Status = detail::NewtonStatus;
+
+Status dense_newton(const Model& m, double tolerance, double t, const std::vector<int>& colmap,
+                    int nfree, VectorXd& q, VectorXd& psi) {
+  VectorXd dx(nfree), q_trial(m.n0);
+  MatrixXd J(m.m0, nfree);
+  detail::NewtonBuffers w{.psi = psi, .J = J, .dx = dx, .q_trial = &q_trial};
+  return detail::solve_positions(m, assembly_newton(tolerance), w, t, colmap, q).status;
+}
+
+// the same Newton on the sparse Jacobian (large models: kinematics/sparse_kinematics.hpp)
+Status sparse_newton(const Model& m, double tolerance, double t, const std::vector<int>& colmap,
+                     int nfree, VectorXd& q, VectorXd& psi) {
+  using S = detail::SparseNewton;
+  switch (detail::sparse_assembly_newton(m, tolerance, t, colmap, nfree, q, psi)) {
+    case S::converged:
+      return Status::converged;
+    case S::non_finite:
+      return Status::non_finite;
+    case S::stalled:
+      return Status::stalled;
+    case S::max_iterations:
+      break;
+  }
+  return Status::max_iterations;
+}
+
 }  // namespace
 
 VectorXd assemble(const Model& m, const VectorXd& q0_guess, double t, std::span<const int> fixed,
@@ -51,13 +79,12 @@ VectorXd assemble(const Model& m, const VectorXd& q0_guess, double t, std::span<
   for (int f : fixed) colmap[f] = -1;
   int nfree = 0;
   for (int& c : colmap) c = c < 0 ? -1 : nfree++;
-  VectorXd psi(m.m0), dx(nfree), q_trial(m.n0);
-  MatrixXd J(m.m0, nfree);
-  detail::NewtonBuffers w{.psi = psi, .J = J, .dx = dx, .q_trial = &q_trial};
-  const detail::NewtonResult r =
-      detail::solve_positions(m, assembly_newton(tolerance * m.scale), w, t, colmap, q);
-  if (r.status == detail::NewtonStatus::converged) return q;
-  if (r.status == detail::NewtonStatus::non_finite)
+  VectorXd psi(m.m0);
+  const Status status = detail::sparse_kinematics(m)
+                            ? sparse_newton(m, tolerance * m.scale, t, colmap, nfree, q, psi)
+                            : dense_newton(m, tolerance * m.scale, t, colmap, nfree, q, psi);
+  if (status == Status::converged) return q;
+  if (status == Status::non_finite)
     throw Error("assembly: non-finite constraint residual " + worst_row(m.position_row_labels, psi),
                 m.position_row_labels[worst_index(psi)], t);
   // stalled (no acceptable step) or max_iterations: psi is evaluated at q

@@ -8,6 +8,7 @@
 #include <cmath>
 #include <sstream>
 
+#include "kinematics/sparse_kinematics.hpp"
 #include "mo2d/error.hpp"
 #include "mo2d/kinematics.hpp"
 
@@ -38,7 +39,27 @@ void throw_redundant(const std::vector<int>& rows, const std::vector<std::string
 
 }  // namespace
 
+namespace {
+
+// The same checks on the sparse Jacobians (large models: kinematics/sparse_kinematics.hpp).
+void check_sparse_ranks(const Model& m, const VectorXd& q0, double t) {
+  VectorXd psi(m.m0), b(m.m1);
+  detail::SparseRowsK J;
+  const VectorXd d = column_scaling(m);
+  detail::sparse_position_jacobian(m, q0, t, nullptr, m.n0, psi, J);
+  detail::make_dimensionless(J, d.head(m.n0));
+  if (auto rows = detail::sparse_dependent_rows(J, 1e-10); !rows.empty())
+    throw_redundant(rows, m.position_row_labels, "position", t);
+  detail::sparse_velocity_jacobian(m, q0, t, J, b);
+  detail::make_dimensionless(J, d);
+  if (auto rows = detail::sparse_dependent_rows(J, 1e-10); !rows.empty())
+    throw_redundant(rows, m.velocity_row_labels, "velocity", t);
+}
+
+}  // namespace
+
 void check_constraint_ranks(const Model& m, const VectorXd& q0, double t) {
+  if (detail::sparse_kinematics(m)) return check_sparse_ranks(m, q0, t);
   VectorXd psi(m.m0), b(m.m1);
   MatrixXd Psi(m.m0, m.n0), A(m.m1, m.n1);
   position_jacobian(m, q0, t, psi, Psi);
@@ -132,7 +153,32 @@ SingularDirection singular_direction(const MatrixXd& J, const VectorXd& d,
           largest_entries(svd.matrixV().col(k), col_labels)};
 }
 
+namespace {
+
+// conditioning() on a sparse Jacobian (large models: kinematics/sparse_kinematics.hpp)
+Conditioning sparse_conditioning(detail::SparseRowsK& J, const VectorXd& d) {
+  Conditioning c;
+  c.rows = static_cast<int>(J.rows());
+  c.cols = static_cast<int>(J.cols());
+  if (c.rows == 0 || c.cols == 0) return c;
+  detail::make_dimensionless(J, d);
+  const detail::SparseSingular s = detail::sparse_extreme_singular_values(J, 1e-10);
+  c.sigma_max = s.sigma_max;
+  c.sigma_min = s.sigma_min;
+  c.rank = s.rank;
+  c.condition = c.sigma_min > 0 ? c.sigma_max / c.sigma_min : INFINITY;
+  return c;
+}
+
+}  // namespace
+
 Conditioning velocity_conditioning(const Model& m, const VectorXd& q0, double t) {
+  if (detail::sparse_kinematics(m)) {
+    detail::SparseRowsK A;
+    VectorXd b(m.m1);
+    detail::sparse_velocity_jacobian(m, q0, t, A, b);
+    return sparse_conditioning(A, column_scaling(m));
+  }
   MatrixXd A(m.m1, m.n1);
   VectorXd b(m.m1);
   velocity_jacobian(m, q0, t, A, b);
@@ -140,6 +186,12 @@ Conditioning velocity_conditioning(const Model& m, const VectorXd& q0, double t)
 }
 
 Conditioning position_conditioning(const Model& m, const VectorXd& q0, double t) {
+  if (detail::sparse_kinematics(m)) {
+    detail::SparseRowsK Psi;
+    VectorXd psi(m.m0);
+    detail::sparse_position_jacobian(m, q0, t, nullptr, m.n0, psi, Psi);
+    return sparse_conditioning(Psi, column_scaling(m).head(m.n0));
+  }
   MatrixXd Psi(m.m0, m.n0);
   VectorXd psi(m.m0);
   position_jacobian(m, q0, t, psi, Psi);

@@ -69,6 +69,10 @@ bool KluLU::factorize(const Eigen::SparseMatrix<double>& A) {
   return true;
 }
 
+double KluLU::pivot_ratio() const {
+  return p_->numeric ? p_->common.rcond : 0.0;
+}
+
 void KluLU::solve(Eigen::VectorXd& x) {
   klu_solve(p_->symbolic, p_->numeric, static_cast<int>(x.size()), 1, x.data(), &p_->common);
 }

@@ -27,6 +27,8 @@ class KluLU {
   void solve(Eigen::VectorXd& x);
   // forget the pattern and the factors
   void reset();
+  // min|U_ii| / max|U_ii| of the last factorization (klu_rcond; 0 before one)
+  double pivot_ratio() const;
   long refactorizations = 0, full_factorizations = 0;  // counters (benchmarks, tests)
 
  private:

@@ -5,6 +5,7 @@
 #include <cmath>
 #include <sstream>
 
+#include "kinematics/sparse_kinematics.hpp"
 #include "mo2d/error.hpp"
 #include "mo2d/model.hpp"
 #include "run/format.hpp"
@@ -60,6 +61,9 @@ void check_memory(const std::string& what, double bytes, double limit, const std
 }
 
 double build_memory_bytes(int n0, int m0, int n1, int m1) {
+  // large models: sparse Jacobians and QR factors (kinematics/sparse_kinematics.hpp), O(n) for a
+  // chain; 2 kB per variable and row is a generous bound
+  if (n1 + m1 >= detail::kSparseKinematics) return 2048.0 * (n0 + m0 + n1 + m1);
   // assemble: J (m0 x n0) and its complete orthogonal decomposition (a copy and Householder
   // coefficients); rank checks: Psi, A and the QR of their transposes
   const double d0 = static_cast<double>(m0) * n0, d1 = static_cast<double>(m1) * n1;
@@ -67,6 +71,7 @@ double build_memory_bytes(int n0, int m0, int n1, int m1) {
 }
 
 double conditioning_memory_bytes(const Model& m) {
+  if (detail::sparse_kinematics(m)) return 2048.0 * (m.m1 + m.n1);  // sparse QR and LDL^T
   // A (m1 x n1), the SVD's working copy and its QR preconditioner
   return 8.0 * 3 * static_cast<double>(m.m1) * m.n1;
 }

@@ -1,5 +1,6 @@
 # ctest helper: write a scene of an N-link chain pivoted end to end (-DN=20000 -DOUT=file.yaml),
-# for `mo2d info` to refuse quickly (its dense matrices would need tens of GB).
+# for `mo2d info` (dense, its matrices would need tens of GB; sparse since issue 14: refused only
+# under a tighter --max-memory).
 set(text "name: chain${N}\nground: {O: [0, 0]}\nbodies:\n")
 set(joints "joints:\n")
 math(EXPR last "${N} - 1")

@@ -365,4 +365,42 @@ TEST(NoAllocation, ForwardAccelerations) {
               "pendulum");
 }
 
+// The same on the sparse path (sparse_engine.hpp): the Gram matrix's LDL^T of the conditioning
+// estimate and the KKT system's KLU refactorization at every evaluation, and, near a singular
+// configuration, the augmented-Lagrangian iteration on the sparse Cholesky of H. Eigen's
+// SimplicialLLT/LDLT::factorize copy P A P^T into a new matrix at every call, their solve applies
+// P^-1 through a temporary mask and vectorD() returns a copy: the engine goes through
+// linalg/fixed_cholesky.hpp instead (with vectorD() left in, this test saw 1 malloc per
+// evaluation).
+TEST(NoAllocation, ForwardAccelerationsSparse) {
+  auto expect_none = [](const mo2d::Model& model, const mo2d::State& s, const char* name) {
+    mo2d::ForwardOptions o{.integrator = mo2d::Integrator::rk4, .step = 1e-3};
+    o.linear_algebra = mo2d::LinearAlgebra::sparse;
+    mo2d::ForwardData data(model, o);
+    const Eigen::VectorXd u = Eigen::VectorXd::Constant(model.n_inputs(), 0.5);
+    mo2d::forward_accelerations(model, data, 0.0, s.q0, s.q1, u);
+    Counts c;
+    {
+      CountAllocations scope;
+      for (int k = 0; k < 100; ++k)
+        mo2d::forward_accelerations(model, data, 1e-3 * k, s.q0, s.q1, u);
+      c = scope.stop();
+    }
+    EXPECT_EQ(c.news, 0) << "operator new calls in 100 evaluations, " << name;
+    EXPECT_EQ(c.mallocs, 0) << "malloc/calloc/realloc calls in 100 evaluations, " << name;
+    if (c.news != 0 || c.mallocs != 0) print_traces();
+    EXPECT_TRUE(data.a.allFinite());
+    EXPECT_GT(data.stats.rhs_evaluations, 100);
+  };
+  const mo2d::Model fourbars = mo2d::build_model(mo2d::mechanisms::double_fourbar());
+  expect_none(
+      fourbars,
+      mo2d::consistent_state(fourbars, {.positions = {}, .velocities = {{"crank0.w", -1.0}}}),
+      "double four-bar");
+  const mo2d::Model slider = mo2d::build_model(mo2d::mechanisms::slider_crank().system);
+  expect_none(slider,
+              mo2d::consistent_state(slider, {.positions = {}, .velocities = {{"crank.w", 2.0}}}),
+              "slider-crank");
+}
+
 }  // namespace
