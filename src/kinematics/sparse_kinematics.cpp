@@ -88,8 +88,9 @@ std::vector<int> sparse_dependent_rows(const SparseRowsK& B, double threshold) {
   if (B.rows() == 0) return out;
   QR qr;
   factor_transpose(B, threshold, qr);
-  const auto& p = qr.colsPermutation().indices();
-  for (int k = static_cast<int>(qr.rank()); k < B.rows(); ++k) out.push_back(p[k]);
+  const auto perm = qr.colsPermutation();  // a map of SPQR's E (the object holds the pointer)
+  for (int k = static_cast<int>(qr.rank()); k < B.rows(); ++k)
+    out.push_back(static_cast<int>(perm.indices()[k]));
   return out;
 }
 
