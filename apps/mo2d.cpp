@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "command.hpp"
+#include "draw_module.hpp"
 #include "mo2d/error.hpp"
 #include "mo2d/output.hpp"
 #include "scene_options.hpp"
@@ -17,18 +18,46 @@
 // registered twice), which should abort; every error of a run is caught below.
 int main(int argc, char** argv) {  // NOLINT(bugprone-exception-escape)
   using namespace mo2d::cli;
-  // SIGINT/SIGTERM/SIGHUP remove the temporaries of unfinished output files (mo2d/output.hpp)
-  mo2d::remove_temporaries_on_signal();
   CLI::App app{"mo2d: dynamics of planar mechanisms (scene files: docs/scene-format.md)", "mo2d"};
   app.require_subcommand(0, 1);
   app.fallthrough(false);
   app.set_version_flag("--version", "mo2d " MO2D_VERSION);
-  const std::vector<Command> commands = {
-      add_demo_command(app),    add_info_command(app),   add_inverse_command(app),
-      add_forward_command(app), add_render_command(app), add_crosscheck_command(app),
-      add_plot_command(app),    add_modes_command(app),  add_linearize_command(app),
-      add_sweep_command(app),
+  // the drawing commands: from a module loaded only when asked for or listed (draw_module.hpp)
+  AddDrawingCommand draw = nullptr;
+  if (needs_drawing_commands(argc, argv)) {
+    std::string why;
+    draw = load_drawing_module(why);
+    if (!draw && names_drawing_command(argc, argv)) {
+      std::fprintf(stderr, "mo2d: error: '%s' needs %s\n", argv[1], why.c_str());
+      return 1;
+    }
+    if (!draw)
+      std::fprintf(stderr,
+                   "mo2d: note: demo, render, crosscheck, plot, modes and linearize are not "
+                   "available: %s\n",
+                   why.c_str());
+  }
+  std::vector<Command> commands;
+  auto add = [&](Command (*core)(CLI::App&), const char* drawing) {
+    Command c;
+    if (core)
+      commands.push_back(core(app));
+    else if (draw && draw(MO2D_VERSION, drawing, &app, &c))
+      commands.push_back(c);
   };
+  add(nullptr, "demo");
+  add(add_info_command, nullptr);
+  add(add_inverse_command, nullptr);
+  add(add_forward_command, nullptr);
+  add(nullptr, "render");
+  add(nullptr, "crosscheck");
+  add(nullptr, "plot");
+  add(nullptr, "modes");
+  add(nullptr, "linearize");
+  add(add_sweep_command, nullptr);
+  // SIGINT/SIGTERM/SIGHUP remove the temporaries of unfinished output files (mo2d/output.hpp);
+  // after the module, which installs its own handler for the files it writes
+  mo2d::remove_temporaries_on_signal();
   if (argc <= 1) {  // a bare mo2d: what it can do, nothing run or written
     std::fputs(app.help().c_str(), stdout);
     return 0;

@@ -305,17 +305,19 @@ void factor_velocity_system(const Model& m, InverseData& d, double t) {
   for (const auto& c : m.constraints) detail::velocity_rows(m, c, d.q0, t, d.b, sink);
   for (int k = 0; k < dof; ++k) d.K(m.m1 + k, d.p_index[k]) = 1.0;
   check_finite_rows(d.b, m.velocity_row_labels, "velocity", t);
-  if (!d.K.allFinite())
+  // factored in dimensionless form Ks = R K D (R: unit rows of A D, and E's rows back to 1), so
+  // that the singularity tests do not depend on units or size: K^-1 = D Ks^-1 R. The squared
+  // row norms are summed column by column (K is column-major; each row still sums j = 0, 1, ...)
+  auto s2 = d.k_row.head(m.m1);
+  s2.setZero();
+  for (int j = 0; j < m.n1; ++j)
+    s2.array() += (d.K.col(j).head(m.m1).array() * d.col_scale[j]).square();
+  // a non-finite entry of A makes its row's sum non-finite (E's rows are ones): K is scanned
+  // only then (or when a finite row overflowed)
+  if (!s2.allFinite() && !d.K.allFinite())
     throw Error("the velocity constraint Jacobian is not finite at t = " + fmt(t) + " s", m.name,
                 t);
-  // factored in dimensionless form Ks = R K D (R: unit rows of A D, and E's rows back to 1), so
-  // that the singularity tests do not depend on units or size: K^-1 = D Ks^-1 R
-  for (int i = 0; i < m.m1; ++i) {
-    double s2 = 0;
-    for (int j = 0; j < m.n1; ++j)
-      s2 += (d.K(i, j) * d.col_scale[j]) * (d.K(i, j) * d.col_scale[j]);
-    d.k_row[i] = s2 > 0 ? 1 / std::sqrt(s2) : 1.0;
-  }
+  for (int i = 0; i < m.m1; ++i) d.k_row[i] = s2[i] > 0 ? 1 / std::sqrt(s2[i]) : 1.0;
   for (int k = 0; k < dof; ++k) d.k_row[m.m1 + k] = 1 / d.col_scale[d.p_index[k]];
   d.Ks.noalias() = d.k_row.asDiagonal() * d.K * d.col_scale.asDiagonal();
   d.pivot_ratio = d.lu_K->compute(d.Ks);
