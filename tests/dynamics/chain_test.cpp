@@ -8,6 +8,8 @@
 //  - the stiff chain against the rigid drive it tends to (a gear pair of ratio r_a / r_b on the
 //    same flywheels, viscous bearings): the tension's error falls as 1/k;
 //  - the sparse engine against the dense one; bad input named.
+// Runs have a 30 s budget: a wrong force (a planted mutation that feeds energy in) fails instead
+// of grinding on.
 #include "dynamics/chain.hpp"
 
 #include <gtest/gtest.h>
@@ -162,7 +164,8 @@ TEST(Chain, SpanLengthsEqualTheSampledBeltPath) {
 Trajectory swinging_run(const Model& m) {
   const State s0 = consistent_state(
       m, {.positions = {}, .velocities = {{"drive.w", 20.0}, {"arm.w", 1.5}, {"wheel.w", 3.0}}});
-  return forward_dynamics(m, s0, {.t1 = 1, .samples = 101, .rtol = 1e-10, .atol = 1e-12});
+  return forward_dynamics(
+      m, s0, {.t1 = 1, .samples = 101, .rtol = 1e-10, .atol = 1e-12, .max_seconds = 30});
 }
 
 double swing_of_centre_line(const Model& m, const Trajectory& r) {
@@ -210,8 +213,12 @@ TEST(Chain, SparseEngineAgreesWithDense) {
   const Model m = build_model(swing_arm_drive(2e4, ChainFidelity::bilateral, 5));
   const State s0 = consistent_state(
       m, {.positions = {}, .velocities = {{"drive.w", 20.0}, {"arm.w", 1.5}, {"wheel.w", 3.0}}});
-  ForwardOptions o{.t1 = 0.2, .samples = 5, .integrator = Integrator::dopri5, .rtol = 1e-10,
-                   .atol = 1e-12};
+  ForwardOptions o{.t1 = 0.2,
+                   .samples = 5,
+                   .integrator = Integrator::dopri5,
+                   .rtol = 1e-10,
+                   .atol = 1e-12,
+                   .max_seconds = 30};
   o.linear_algebra = LinearAlgebra::dense;
   const Trajectory d = forward_dynamics(m, s0, o);
   o.linear_algebra = LinearAlgebra::sparse;
@@ -259,9 +266,10 @@ System flywheels(double k) {
 }
 
 TEST(Chain, StiffChainTendsToTheRigidDriveAsOneOverK) {
-  const ForwardOptions o{.t1 = 1, .samples = 11, .rtol = 1e-12, .atol = 1e-14};
+  const ForwardOptions o{.t1 = 1, .samples = 11, .rtol = 1e-12, .atol = 1e-14, .max_seconds = 30};
   const Model rigid = build_model(flywheels(0));
-  const Trajectory rr = forward_dynamics(rigid, consistent_state(rigid, {.positions = {}, .velocities = {{"a.w", 0.0}}}), o);
+  const Trajectory rr = forward_dynamics(
+      rigid, consistent_state(rigid, {.positions = {}, .velocities = {{"a.w", 0.0}}}), o);
   const double T_rigid = rr.reactions(10, rr.reaction("mesh.torque")) / rb;
   std::vector<double> err;
   for (double k : {1e4, 1e5, 1e6}) {

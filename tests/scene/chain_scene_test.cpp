@@ -79,15 +79,16 @@ TEST(ChainScene, BadInputAtItsLine) {
     EXPECT_EQ(e.rfind(where + ": ", 0), 0u) << "expected at " << where << ", got: " << e;
     EXPECT_NE(e.find(what), std::string::npos) << "expected '" << what << "' in: " << e;
   };
-  expect(chain_error("radius_a: 0.04", "radius_a: 0"), "bad.yaml:18:64",
+  expect(chain_error("radius_a: 0.04", "radius_a: 0"), "bad.yaml:17:49",
          "chain 'ch'.radius_a: must be > 0");
-  expect(chain_error("body_b: b", "body_b: bb"), "bad.yaml:18:85",
+  expect(chain_error("body_b: b", "body_b: bb"), "bad.yaml:17:63",
          "chain 'ch'.body_b: undefined body 'bb'");
-  expect(chain_error("stiffness: 1e4", "stiffness: 1e4, fidelity: rigid"), "bad.yaml:19:37",
+  expect(chain_error("stiffness: 1e4", "stiffness: 1e4, fidelity: rigid"), "bad.yaml:18:36",
          "'rigid' is not one of unilateral, bilateral");
-  expect(chain_error("radius_b: 0.1", "radius_b: 0.5"), "bad.yaml:18:5",
+  expect(chain_error("radius_b: 0.1", "radius_b: 0.5"), "bad.yaml:17:5",
          "the pitch circles overlap");
-  expect(chain_error("stiffness: 1e4", "stifness: 1e4"), "bad.yaml:18:9", "stifness");
+  expect(chain_error("stiffness: 1e4", "stifness: 1e4"), "bad.yaml:18:10", "stifness");
 }
 
 }  // namespace
+}  // namespace mo2d
