@@ -19,6 +19,7 @@
 #include <numbers>
 #include <vector>
 
+#include "mo2d/crosscheck.hpp"
 #include "mo2d/dynamics.hpp"
 #include "mo2d/forward.hpp"
 #include "mo2d/mo2d.hpp"
@@ -325,6 +326,35 @@ TEST(Chain, BadInputIsNamed) {
                "chain 'chain'.body_b: unknown body 'wheeel' (did you mean 'wheel'?)");
   expect_error(with([](ChainDef& c) { c.body_b = "drive"; }), "both sprockets are on body");
   expect_error(with([](ChainDef& c) { c.rest_upper = -1.0; }), "rest_upper must be");
+}
+
+// Box2D has no chain or belt drive: the cross-check refuses the element by name.
+TEST(Chain, Box2DCrosscheckRefusesIt) {
+  System s("two_discs");  // the flywheels without their bearing (Box2D refuses that too)
+  s.add_ground_node("A", {0, 0});
+  s.add_ground_node("B", {0.5, 0});
+  s.add_body(disc("a", {0, 0}, 1, Ia));
+  s.add_body(disc("b", {0.5, 0}, 1, Ib));
+  s.add_revolute({.name = "pa", .node_a = "ground.A", .node_b = "a.C"});
+  s.add_revolute({.name = "pb", .node_a = "ground.B", .node_b = "b.C"});
+  s.add_chain({.name = "chain",
+               .body_a = "a",
+               .centre_a = {0, 0},
+               .radius_a = ra,
+               .body_b = "b",
+               .centre_b = {0.5, 0},
+               .radius_b = rb,
+               .stiffness = 1e4});
+  const Model m = build_model(s, {.reduction = Reduction::none});
+  const State s0 =
+      consistent_state(m, {.positions = {}, .velocities = {{"a.w", 1.0}, {"b.w", 0.0}}});
+  try {
+    crosscheck_forward(m, s0, 0.1);
+    ADD_FAILURE() << "a chain was translated to Box2D";
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("chain 'chain' is not translated"), std::string::npos)
+        << e.what();
+  }
 }
 
 }  // namespace
