@@ -30,9 +30,9 @@ MatrixXd mass_matrix(const Model& m);
 // Reduced applied forces f(q0, q1, t) (n1).
 void applied_forces(const Model& m, const Eigen::Ref<const VectorXd>& q0,
                     const Eigen::Ref<const VectorXd>& q1, double t, Eigen::Ref<VectorXd> f);
-// Potential energy of gravity and of the linear springs (those without a law; a unilateral one
-// only while it acts); power dissipated by their dampers (>= 0; a unilateral spring: its tension
-// less the elastic part, times dl/dt).
+// Potential energy of gravity, of the linear springs (those without a law; a unilateral one
+// only while it acts) and of the chains' spans; power dissipated by their dampers (>= 0; a
+// unilateral spring: its tension less the elastic part, times dl/dt).
 double potential_energy(const Model& m, const Eigen::Ref<const VectorXd>& q0);
 double damping_power(const Model& m, const Eigen::Ref<const VectorXd>& q0,
                      const Eigen::Ref<const VectorXd>& q1);
@@ -63,6 +63,13 @@ struct TorsionalValue {
 TorsionalValue torsional_value(const Model& m, const TorsionalLoad& l,
                                const Eigen::Ref<const VectorXd>& q0,
                                const Eigen::Ref<const VectorXd>& q1, double t);
+// A chain drive's spans (ChainLoad; src/dynamics/chain.hpp): each span's material length and
+// tension (> 0 pulls), and the chain's power on the mechanism, -sum T dl/dt.
+struct ChainValue {
+  double upper_length = 0, upper_tension = 0, lower_length = 0, lower_tension = 0, power = 0;
+};
+ChainValue chain_value(const Model& m, const ChainLoad& c, const Eigen::Ref<const VectorXd>& q0,
+                       const Eigen::Ref<const VectorXd>& q1, double t);
 // The value of every joint friction (Model::frictions; FrictionDef in mo2d/system.hpp) at the
 // state (q0, q1) with the joint reactions `reactions` (Model::reactions order): out[k] =
 // -viscous v - mu N sgn(v), v the joint's rate, N its normal force from the reaction,

@@ -252,6 +252,23 @@ struct TorsionalLoad {
   CompiledLaw torque;  // empty: linear
 };
 
+// A chain or belt drive (ChainDef; its spans' lengths and forces in src/dynamics/chain.hpp).
+struct ChainLoad {
+  std::string name;
+  BodyPoint a, b;                  // the sprockets' centres
+  int body_a = -1, body_b = -1;    // their bodies (-1: ground)
+  int theta_a = -1, theta_b = -1;  // q0 of "name.theta_a", "name.theta_b" (-1: on the ground)
+  double radius_a = 0, radius_b = 0, stiffness = 0, damping = 0;
+  double rest_upper = 0, rest_lower = 0;  // m
+  ChainFidelity fidelity = ChainFidelity::unilateral;
+  // Set from the assembled configuration (build_model): the centre line's initial direction
+  // (beta is unwrapped near it) and the constants that make l = L there.
+  double beta0 = 0, offset_upper = 0, offset_lower = 0;
+  // Gamba's printed extension (2009, §2.2: without the wrap term (r_b - r_a)(beta +- alpha)), for
+  // comparison in tests only: its forces have no potential (energy is not conserved).
+  bool printed_extension = false;
+};
+
 // Friction in a joint (FrictionDef; evaluated in src/dynamics/friction.cpp). Its value F (N or
 // N m) acts as the generalized force F * terms; its rate is v = sum coef * q1[var] over terms.
 struct FrictionLoad {
@@ -347,6 +364,7 @@ struct Model {
   std::vector<TorqueLoad> torques;
   std::vector<SpringLoad> springs;
   std::vector<TorsionalLoad> torsional_springs;
+  std::vector<ChainLoad> chains;
   std::vector<NamedPoint> points;
   std::vector<FrictionLoad> frictions;
   // Derived quantities by label (mo2d/law.hpp): bodies, joints, springs, points, node aliases.

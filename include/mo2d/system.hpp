@@ -219,6 +219,40 @@ struct SpringDef {
   SpringActs acts = SpringActs::both;
 };
 
+// How a chain or belt drive is modelled (src/dynamics/chain.hpp, docs/reduction.md): each of
+// its two spans a spring that only pulls (a chain, a belt: slack while shorter than its rest
+// length), or a bilateral spring (also pushes: the upper- and lower-span models of Gamba 2009,
+// §2.5).
+enum class ChainFidelity { unilateral, bilateral };
+
+// A chain or belt drive between two sprockets (or pulleys): sprocket a of pitch radius radius_a
+// centred at centre_a, fixed in body_a, and sprocket b likewise ("ground" allowed for either: a
+// sprocket that does not turn); the centres may move (a sprocket on a swing arm). The open-belt
+// geometry is exact: the two straight spans are the outer common tangents of the pitch circles,
+// the "upper" span on the left of the line from centre a to centre b (above it when b is to the
+// right of a), the "lower" span on the right. Each span's material length l (the chain between
+// two marks on the sprockets, the wrapped arcs inextensible) is, with D = |c_b - c_a|,
+// beta = direction of c_b - c_a, cos alpha = (r_a - r_b) / D, L = sqrt(D^2 - (r_a - r_b)^2):
+//   l_upper = L + (r_b - r_a)(beta + alpha) + r_a theta_a - r_b theta_b + const
+//   l_lower = L + (r_a - r_b)(beta - alpha) - r_a theta_a + r_b theta_b + const
+// (const: l = L at the initial configuration), theta the bodies' unwrapped angles (the
+// coordinates "name.theta_a", "name.theta_b" this element adds). Each span's tension
+// T = k (l - rest) + c dl/dt acts at the material tangent points along the span (power
+// -T dl/dt). A counter-clockwise turn of sprocket a tightens the upper span.
+struct ChainDef {
+  std::string name{};
+  std::string body_a{};
+  Vec2 centre_a{0, 0};  // in the System's frame at the initial configuration
+  double radius_a = 0;  // m, > 0 (pitch radius)
+  std::string body_b{};
+  Vec2 centre_b{0, 0};
+  double radius_b = 0;   // m, > 0; the pitch circles may not overlap (|c_b - c_a| > r_a + r_b)
+  double stiffness = 0;  // N/m per span (> 0)
+  double damping = 0;    // N s/m per span (>= 0)
+  std::optional<double> rest_upper{}, rest_lower{};  // m (> 0); default: the initial span length
+  ChainFidelity fidelity = ChainFidelity::unilateral;
+};
+
 // A torsional spring-damper at a revolute joint: torque -k (theta - rest) - c (w2 - w1) on body 2
 // and the opposite on body 1, theta = relative angle of the bodies (measured within +-pi of rest);
 // or any law: torque = torque(...), a Law that may read "angle" (theta - rest, within +-pi) and
@@ -293,6 +327,7 @@ class System {
   System& add_torque(TorqueDef torque);
   System& add_spring(SpringDef spring);
   System& add_torsional_spring(TorsionalSpringDef spring);
+  System& add_chain(ChainDef chain);
   System& add_point(PointDef point);
   System& add_friction(FrictionDef friction);
   System& add_instance(std::string name, const System& sub, Placement placement = {});
@@ -313,6 +348,7 @@ class System {
   const std::vector<TorqueDef>& torques() const { return torques_; }
   const std::vector<SpringDef>& springs() const { return springs_; }
   const std::vector<TorsionalSpringDef>& torsional_springs() const { return torsional_; }
+  const std::vector<ChainDef>& chains() const { return chains_; }
   const std::vector<PointDef>& points() const { return points_; }
   const std::vector<FrictionDef>& frictions() const { return frictions_; }
   const std::vector<Instance>& instances() const { return instances_; }
@@ -334,6 +370,7 @@ class System {
   std::vector<TorqueDef> torques_;
   std::vector<SpringDef> springs_;
   std::vector<TorsionalSpringDef> torsional_;
+  std::vector<ChainDef> chains_;
   std::vector<PointDef> points_;
   std::vector<FrictionDef> frictions_;
   std::vector<Instance> instances_;

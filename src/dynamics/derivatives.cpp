@@ -16,6 +16,7 @@
 #include <cmath>
 
 #include "constraints/common.hpp"
+#include "dynamics/chain.hpp"
 #include "dynamics/points.hpp"
 
 namespace mo2d::detail {
@@ -189,6 +190,7 @@ void body_applied_derivative(const Model& m, const VecRef& q0, const VecRef& q1,
     add_torque(m, l.body2, dtau, dlocal);
     add_torque(m, l.body1, -dtau, dlocal);
   }
+  add_chain_forces_derivative(m, q0, q1, dq0, dq1, t, dlocal.data());
 }
 
 // load_power = sum F . v (forces) + tau omega (torques) - T ldot (spring laws) + tau w_rel
@@ -255,7 +257,7 @@ double damping_power_derivative(const Model& m, const VecRef& q0, const VecRef& 
     const Jet w = omega_jet(m, l.body2, q1, dq1) - omega_jet(m, l.body1, q1, dq1);
     dp += 2 * l.damping * w.v * w.d;
   }
-  return dp;
+  return dp + chain_damping_power_derivative(m, q0, q1, dq0, dq1);
 }
 
 }  // namespace mo2d::detail

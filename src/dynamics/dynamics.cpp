@@ -5,6 +5,7 @@
 #include <string>
 
 #include "constraints/constraints.hpp"
+#include "dynamics/chain.hpp"
 #include "dynamics/points.hpp"
 #include "mo2d/error.hpp"
 
@@ -108,7 +109,7 @@ double potential_energy(const Model& m, const Eigen::Ref<const VectorXd>& q0) {
     const double th = relative_angle(m, l, q0);
     v += 0.5 * l.stiffness * th * th;
   }
-  return v;
+  return v + detail::chain_potential(m, q0);
 }
 
 double damping_power(const Model& m, const Eigen::Ref<const VectorXd>& q0,
@@ -131,7 +132,7 @@ double damping_power(const Model& m, const Eigen::Ref<const VectorXd>& q0,
     const double w = relative_rate(m, l, q1);
     p += l.damping * w * w;
   }
-  return p;
+  return p + detail::chain_damping_power(m, q0, q1);
 }
 
 Vec2 point_force(const Model& m, const PointLoad& f, const Eigen::Ref<const VectorXd>& q0,
@@ -203,6 +204,7 @@ void body_applied(const Model& m, const Eigen::Ref<const VectorXd>& q0,
     if (l.body2 >= 0) local[m.bodies[l.body2].offset + m.bodies[l.body2].slots() - 1] += tau;
     if (l.body1 >= 0) local[m.bodies[l.body1].offset + m.bodies[l.body1].slots() - 1] -= tau;
   }
+  detail::add_chain_forces(m, q0, q1, t, local.data());
 }
 
 void scatter_local(const Model& m, const Eigen::Ref<const VectorXd>& local,

@@ -72,12 +72,14 @@ Model build_model(const System& system, const BuildOptions& options) {
 
   // 6. loads; 7. merge edges of the eliminated joints
   add_loads(flat, elements, reduced, m);
+  add_chains(flat, m);
   add_frictions(flat, elements, reduced, m);
   add_merge_edges(elements, reduced, joint_reactions, m);
 
   // 8. assemble
   check_input_labels(m);
   assemble_model(m, numbering.q0, options);
+  init_chains(m);
   m.sketch = std::move(sketch);
   complete_sketch_report(m);
   return m;

@@ -82,6 +82,7 @@ struct Flat {
   std::vector<Owned<TorqueDef>> torques;
   std::vector<Owned<SpringDef>> springs;  // attachment points in world
   std::vector<Owned<TorsionalSpringDef>> torsional;
+  std::vector<Owned<ChainDef>> chains;  // centres in world; "name.theta_a/b" in coordinates
   std::vector<Owned<PointDef>> points;  // point in world
   std::vector<Owned<FrictionDef>> frictions;
 };
@@ -228,6 +229,10 @@ void check_linear_in_rates(const Constraint::UserVelocity& c, const VelocityCons
 // m.forces, m.torques, m.springs, m.torsional_springs, m.points, then m.quantities (the derived
 // quantities laws may read, laws.cpp) and the loads' laws compiled against them.
 void add_loads(const Flat& flat, const Elements& el, const Reduced& red, Model& m);
+// Chains (chains.cpp): m.chains after the coordinates "name.theta_a/b"; init_chains sets their
+// initial geometry once m.q0 is assembled.
+void add_chains(const Flat& flat, Model& m);
+void init_chains(Model& m);
 // Joint friction (frictions.cpp): after the rows (reactions, slides) are known.
 void add_frictions(const Flat& flat, const Elements& el, const Reduced& red, Model& m);
 // laws.cpp: m.quantities from the bodies, nodes, revolute joints, springs and points.

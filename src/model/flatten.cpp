@@ -7,6 +7,7 @@
 
 #include "mo2d/error.hpp"
 #include "model/build_stages.hpp"
+#include "model/suggest.hpp"
 
 namespace mo2d::build {
 namespace {
@@ -130,11 +131,51 @@ void flatten_loads(const System& s, const std::string& prefix, const Frame& fram
   }
 }
 
+// A chain's sprocket body: "ground", or a body of this System with a rotation (its angle is
+// read through the coordinate "name.theta_a" or "name.theta_b", d/dt = the body's rate).
+void check_sprocket(const System& s, const ChainDef& c, const std::string& body, const char* key) {
+  const std::string what = "chain '" + c.name + "'." + key;
+  if (body == "ground") return;
+  std::vector<std::string> names{"ground"};
+  for (const auto& b : s.bodies()) {
+    if (b.name != body) {
+      names.push_back(b.name);
+      continue;
+    }
+    if (b.nodes.size() < 2 && !(b.inertia > 0))
+      throw Error(what + ": body '" + body +
+                      "' has no rotation (a point mass: give it two nodes or an inertia)",
+                  c.name);
+    return;
+  }
+  throw Error(what + ": unknown body '" + body + "'" + did_you_mean(body, names), c.name);
+}
+
+// Chains: centres to world, and the unwrapped angle of each turning sprocket as a coordinate.
+void flatten_chains(const System& s, const std::string& prefix, const Frame& frame, int tree_index,
+                    Flat& out) {
+  for (const auto& c : s.chains()) {
+    check_name(c.name, "chain");
+    check_sprocket(s, c, c.body_a, "body_a");
+    check_sprocket(s, c, c.body_b, "body_b");
+    ChainDef w = c;
+    w.centre_a = frame.apply(c.centre_a);
+    w.centre_b = frame.apply(c.centre_b);
+    for (const auto& [body, suffix] : {std::pair{c.body_a, ".theta_a"}, {c.body_b, ".theta_b"}})
+      if (body != "ground")
+        out.coordinates.push_back(
+            {CoordinateDef{.name = c.name + suffix, .rate = {{body + ".w", 1.0}}}, tree_index,
+             prefix});
+    out.chains.push_back({std::move(w), tree_index, prefix});
+  }
+}
+
 void flatten(const System& s, const std::string& prefix, const Frame& frame, int tree_index,
              Flat& out) {
   flatten_bodies(s, prefix, frame, tree_index, out);
   flatten_joints(s, prefix, tree_index, out);
   flatten_loads(s, prefix, frame, tree_index, out);
+  flatten_chains(s, prefix, frame, tree_index, out);
   if (tree_index != 0 && s.gravity() != Vec2(0, 0))
     throw Error("subsystem '" + prefix.substr(0, prefix.size() - 1) +
                     "' sets gravity: gravity belongs to the root system",

@@ -217,7 +217,7 @@ std::string loop_through(const Flat& flat, const std::vector<JointInfo>& joints,
 }
 
 // Writes the placed positions back into Flat: nodes, the centre-of-mass point, and the points of
-// forces, named points and springs on the body, which its frame gives.
+// forces, named points, springs and chains on the body, which its frame gives.
 void place(Flat& flat, const Setup& s, const sketch::Result& r, SketchReport& report) {
   for (size_t f = 0; f < s.body_of_free.size(); ++f) {
     BodyDef& d = flat.bodies[s.body_of_free[f]].def;
@@ -244,6 +244,12 @@ void place(Flat& flat, const Setup& s, const sketch::Result& r, SketchReport& re
       spring.def.point_a = p->apply(unplace(flat.frames[spring.owner], spring.def.point_a));
     if (const sketch::Pose* p = pose_of(spring.prefix, spring.def.body_b))
       spring.def.point_b = p->apply(unplace(flat.frames[spring.owner], spring.def.point_b));
+  }
+  for (auto& chain : flat.chains) {
+    if (const sketch::Pose* p = pose_of(chain.prefix, chain.def.body_a))
+      chain.def.centre_a = p->apply(unplace(flat.frames[chain.owner], chain.def.centre_a));
+    if (const sketch::Pose* p = pose_of(chain.prefix, chain.def.body_b))
+      chain.def.centre_b = p->apply(unplace(flat.frames[chain.owner], chain.def.centre_b));
   }
 }
 

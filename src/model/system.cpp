@@ -77,6 +77,10 @@ System& System::add_torsional_spring(TorsionalSpringDef spring) {
   torsional_.push_back(std::move(spring));
   return *this;
 }
+System& System::add_chain(ChainDef chain) {
+  chains_.push_back(std::move(chain));
+  return *this;
+}
 System& System::add_friction(FrictionDef friction) {
   frictions_.push_back(std::move(friction));
   return *this;

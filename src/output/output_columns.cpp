@@ -52,6 +52,8 @@ std::vector<std::string> output_column_labels(const Model& m, const OutputReques
     for (const TorqueLoad& t : m.torques) add(t.name, {"torque", "power"});
     for (const SpringLoad& s : m.springs) add(s.name, {"length", "rate", "tension", "power"});
     for (const TorsionalLoad& s : m.torsional_springs) add(s.name, {"torque", "rate", "power"});
+    for (const ChainLoad& s : m.chains)
+      add(s.name, {"upper.length", "upper.tension", "lower.length", "lower.tension", "power"});
   }
   for (int k : requested_points(m, q)) add(m.points[k].name, {"x", "y", "vx", "vy"});
   if (q.com)
@@ -90,6 +92,11 @@ void output_column_values(const Model& m, const OutputRequest& q,
     for (const TorsionalLoad& s : m.torsional_springs) {
       const TorsionalValue v = torsional_value(m, s, q0, q1, t);
       for (double x : {v.torque, v.rate, v.torque * v.rate}) put(x);
+    }
+    for (const ChainLoad& s : m.chains) {
+      const ChainValue v = chain_value(m, s, q0, q1, t);
+      for (double x : {v.upper_length, v.upper_tension, v.lower_length, v.lower_tension, v.power})
+        put(x);
     }
   }
   for (int k : requested_points(m, q)) put_state(detail::point_state(m, m.points[k].point, q0, q1));

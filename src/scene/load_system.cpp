@@ -340,9 +340,10 @@ void read_loads(Context& c, const YAML::Node& node, bool root) {
   const Reader& r = c.r;
   if (!node.IsDefined() || node.IsNull()) return;
   if (root)
-    r.check_keys(node, {"gravity", "forces", "torques", "springs", "torsional_springs"}, "loads");
+    r.check_keys(node, {"gravity", "forces", "torques", "springs", "torsional_springs", "chains"},
+                 "loads");
   else
-    r.check_keys(node, {"forces", "torques", "springs", "torsional_springs"},
+    r.check_keys(node, {"forces", "torques", "springs", "torsional_springs", "chains"},
                  "loads (gravity belongs to the root scene)");
   if (node["gravity"].IsDefined()) c.out.set_gravity(r.vec2(node["gravity"], "loads.gravity"));
   for (const auto& [key, value] : r.entries(node["forces"], "loads.forces")) {
@@ -414,6 +415,7 @@ void read_loads(Context& c, const YAML::Node& node, bool root) {
     c.info.elements.emplace_back(s.name, r.at(key));
     c.out.add_torsional_spring(std::move(s));
   }
+  read_chains(r, node["chains"], c.out, c.info);
 }
 
 const BuiltSubsystem& subsystem(const Reader& r, const YAML::Node& ref, Subsystems& lib) {

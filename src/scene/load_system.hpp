@@ -60,6 +60,9 @@ void read_joint_friction(const Reader& r, const YAML::Node& joint, const std::st
 void read_gears(const Reader& r, const YAML::Node& gears, const YAML::Node& racks, System& out,
                 SystemInfo& info);
 
+// loads: chains: (load_chains.cpp), added to `out`.
+void read_chains(const Reader& r, const YAML::Node& chains, System& out, SystemInfo& info);
+
 // Fill `out` from `block`; root: gravity is allowed in loads.
 SystemInfo read_system(const Reader& r, const YAML::Node& block, System& out, bool root,
                        Subsystems& library);

@@ -104,7 +104,8 @@ INSTANTIATE_TEST_SUITE_P(Shipped, SceneJacobian,
                          ::testing::Values("pendulum", "fourbar", "double_fourbar", "slider_crank",
                                            "whitworth", "rrr3", "door", "crank_press",
                                            "slider_crank_control", "cam_table", "ring_disc",
-                                           "rolling_disc", "watt_sixbar_lengths", "engine"));
+                                           "rolling_disc", "watt_sixbar_lengths", "engine",
+                                           "chain_drive"));
 
 // A disc rolling inside a fixed ring (radius R, centre O), off its rest: the rolling constraint's
 // coefficients depend on the position (t = z x C / |C|), so its mixed derivatives g_xv, g_xx

@@ -1,0 +1,75 @@
+// loads: chains: of a system block -> System::add_chain (keys: docs/scene-format.md, "Chain and
+// belt drives"; the geometry and forces: src/dynamics/chain.hpp).
+#include <algorithm>
+
+#include "load_system.hpp"
+#include "model/suggest.hpp"
+
+namespace mo2d::scene_detail {
+
+namespace {
+
+std::string sprocket_body(const Reader& r, const YAML::Node& map, const char* key,
+                          const std::string& what, const SystemInfo& info) {
+  const YAML::Node n = r.required(map, key, what);
+  std::string name = r.string(n, what + "." + key);
+  if (name == "ground") return name;
+  if (std::find(info.bodies.begin(), info.bodies.end(), name) == info.bodies.end())
+    r.fail(n,
+           what + "." + key + ": undefined body '" + name + "'" + did_you_mean(name, info.bodies));
+  return name;
+}
+
+double positive(const Reader& r, const YAML::Node& map, const char* key, const std::string& what) {
+  const YAML::Node n = r.required(map, key, what);
+  const double v = r.number(n, what + "." + key);
+  if (!(v > 0)) r.fail(n, what + "." + key + ": must be > 0");
+  return v;
+}
+
+ChainFidelity fidelity(const Reader& r, const YAML::Node& node, const std::string& what) {
+  if (!node.IsDefined()) return ChainFidelity::unilateral;
+  const std::string v = r.string(node, what + ".fidelity");
+  if (v == "unilateral") return ChainFidelity::unilateral;
+  if (v == "bilateral") return ChainFidelity::bilateral;
+  const std::vector<std::string> names = {"unilateral", "bilateral"};
+  r.fail(node, what + ".fidelity: '" + v + "' is not one of unilateral, bilateral" +
+                   did_you_mean(v, names) +
+                   " (the inextensible constraint model is not written yet: docs/reduction.md)");
+}
+
+}  // namespace
+
+// chains: {name: {body_a, centre_a, radius_a, body_b, centre_b, radius_b, stiffness, damping,
+//                 rest_upper, rest_lower, fidelity}}
+void read_chains(const Reader& r, const YAML::Node& chains, System& out, SystemInfo& info) {
+  for (const auto& [key, value] : r.entries(chains, "loads.chains")) {
+    const std::string& s = key.Scalar();
+    if (s.find_first_of(".,: \t") != std::string::npos || s == "ground")
+      r.fail(key,
+             "chain '" + s + "': names may not contain '.', ',', ':' or spaces, nor be 'ground'");
+    const std::string what = "chain '" + s + "'";
+    r.check_keys(value,
+                 {"body_a", "centre_a", "radius_a", "body_b", "centre_b", "radius_b", "stiffness",
+                  "damping", "rest_upper", "rest_lower", "fidelity"},
+                 what);
+    ChainDef c;
+    c.name = s;
+    c.body_a = sprocket_body(r, value, "body_a", what, info);
+    c.centre_a = r.vec2(r.required(value, "centre_a", what), what + ".centre_a");
+    c.radius_a = positive(r, value, "radius_a", what);
+    c.body_b = sprocket_body(r, value, "body_b", what, info);
+    c.centre_b = r.vec2(r.required(value, "centre_b", what), what + ".centre_b");
+    c.radius_b = positive(r, value, "radius_b", what);
+    c.stiffness = positive(r, value, "stiffness", what);
+    c.damping = r.number_or(value, "damping", 0.0, what);
+    if (c.damping < 0) r.fail(value["damping"], what + ".damping: must be >= 0");
+    if (value["rest_upper"].IsDefined()) c.rest_upper = positive(r, value, "rest_upper", what);
+    if (value["rest_lower"].IsDefined()) c.rest_lower = positive(r, value, "rest_lower", what);
+    c.fidelity = fidelity(r, value["fidelity"], what);
+    info.elements.emplace_back(c.name, r.at(key));
+    out.add_chain(std::move(c));
+  }
+}
+
+}  // namespace mo2d::scene_detail
