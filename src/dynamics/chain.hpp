@@ -70,7 +70,11 @@ struct Spans {
   S L;  // the straight length between the tangent points (both spans)
 };
 
-// Throws when the geometry does not exist (one pitch circle inside the other).
+// How far the line of centres may turn from its initial direction (rad).
+inline constexpr double kChainMaxTurn = 3.0;
+
+// Throws when the geometry does not exist (one pitch circle inside the other), or when the line
+// of centres turns by more than kChainMaxTurn.
 template <class S>
 Spans<S> chain_spans(const ChainLoad& c, const ChainInput<S>& in, double t) {
   using std::atan2;
@@ -91,6 +95,14 @@ Spans<S> chain_spans(const ChainLoad& c, const ChainInput<S>& in, double t) {
   S beta = atan2(dy, dx);  // unwrapped near the initial direction
   const double k = std::round((value_of(beta) - c.beta0) / (2 * std::numbers::pi));
   beta = beta - 2 * std::numbers::pi * k;
+  // The wrap term needs beta unwrapped; it is tracked within +-(pi - margin) of its initial
+  // direction only, and past that the length would jump by 2 pi (r_b - r_a): an error, not that.
+  if (std::abs(value_of(beta) - c.beta0) > kChainMaxTurn)
+    throw Error("chain '" + c.name + "': the line of centres turned " +
+                    std::to_string(value_of(beta) - c.beta0) +
+                    " rad from its initial direction at t = " + std::to_string(t) +
+                    " s; chains whose line of centres turns by more than 3 rad are not supported",
+                c.name, t);
   const S wrap = S(c.printed_extension ? 0.0 : 1.0);
   const S vx = in.vbx - in.vax, vy = in.vby - in.vay;
   auto span = [&](double side, double offset) {  // side +1: upper, -1: lower

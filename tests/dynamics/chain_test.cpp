@@ -358,3 +358,25 @@ TEST(Chain, Box2DCrosscheckRefusesIt) {
 }
 
 }  // namespace
+
+// The wrap term needs the line of centres' angle unwrapped, which is tracked within
+// kChainMaxTurn of its initial direction: past that the length would jump by 2 pi (r_b - r_a),
+// so the evaluation stops with an error naming the chain and the time (here the initial
+// direction is moved instead of the sprockets).
+TEST(Chain, LineOfCentresTurningTooFarIsAnError) {
+  Model m = build_model(swing_arm_drive(1e4, ChainFidelity::unilateral));
+  const Eigen::VectorXd q1 = Eigen::VectorXd::Zero(m.n1);
+  EXPECT_NO_THROW(chain_value(m, m.chains[0], m.q0, q1, 0.0));
+  m.chains[0].beta0 += 0.9 * detail::kChainMaxTurn;  // still within: no error
+  EXPECT_NO_THROW(chain_value(m, m.chains[0], m.q0, q1, 0.0));
+  m.chains[0].beta0 += 0.2 * detail::kChainMaxTurn;
+  try {
+    chain_value(m, m.chains[0], m.q0, q1, 1.25);
+    ADD_FAILURE() << "no error past kChainMaxTurn";
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("chain 'chain': the line of centres turned"),
+              std::string::npos)
+        << e.what();
+    EXPECT_NE(std::string(e.what()).find("t = 1.25"), std::string::npos) << e.what();
+  }
+}
