@@ -10,6 +10,7 @@
 #include <memory>
 #include <sstream>
 
+#include "dynamics/slack.hpp"
 #include "forward/forward_run.hpp"
 #include "linalg/small_lu.hpp"
 #include "mo2d/dynamics.hpp"
@@ -343,6 +344,7 @@ Trajectory forward_dynamics(const Model& m, const State& initial, const ForwardO
   r.efforts.conservativeResize(used, Eigen::NoChange);
   r.reactions.conservativeResize(used, Eigen::NoChange);
   r.stats = d.stats;
+  detail::reduced_spring_slack(m, r, r.stats.warnings);
   return r;
 }
 

@@ -228,6 +228,9 @@ void check_linear_in_rates(const Constraint::UserVelocity& c, const VelocityCons
 // m.forces, m.torques, m.springs, m.torsional_springs, m.points, then m.quantities (the derived
 // quantities laws may read, laws.cpp) and the loads' laws compiled against them.
 void add_loads(const Flat& flat, const Elements& el, const Reduced& red, Model& m);
+// A spring with reduce: constraint (reduced_springs.cpp): its constraint row (|p_b - p_a| = rest
+// length), the reaction "name.tension" and m.reduced_springs, instead of a load.
+void add_reduced_spring(const SpringLoad& s, int owner, Model& m);
 // Joint friction (frictions.cpp): after the rows (reactions, slides) are known.
 void add_frictions(const Flat& flat, const Elements& el, const Reduced& red, Model& m);
 // laws.cpp: m.quantities from the bodies, nodes, revolute joints, springs and points.
