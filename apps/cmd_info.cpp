@@ -1,9 +1,12 @@
 // mo2d info SCENE: what the scene defines (bodies, variables, constraints, inputs, DOF) and
-// whether its initial configuration is consistent and non-singular.
+// whether its initial configuration is consistent and non-singular; with --fidelity, each
+// compliant element's frequency against the run's time scales (mo2d/fidelity.hpp).
+#include <algorithm>
 #include <cstdio>
 #include <iostream>
 
 #include "command.hpp"
+#include "mo2d/fidelity.hpp"
 #include "mo2d/kinematics.hpp"
 #include "mo2d/mo2d.hpp"
 #include "scene_options.hpp"
@@ -16,7 +19,24 @@ namespace {
 // as near-singular: with double precision, velocities would lose more than 8 of 16 digits.
 constexpr double kNearSingular = 1e8;
 
-int info(const SceneOptions& o) {
+// The time scales of the scene's run (the fixed step only for the fixed-step integrators).
+RunTimeScale run_time_scale(const Scene& scene) {
+  const RunSettings& r = scene.run;
+  const int samples = r.samples > 0 ? r.samples : (r.solve == Solve::inverse ? 501 : 101);
+  const bool fixed = r.solve == Solve::forward &&
+                     (r.integrator == Integrator::rk4 || r.integrator == Integrator::baumgarte);
+  return {r.duration, r.duration / std::max(1, samples - 1), fixed ? r.step : 0.0};
+}
+
+void print_fidelity(const Scene& scene, const Model& m) {
+  const RunTimeScale scale = run_time_scale(scene);
+  const State s = scene.run.solve == Solve::forward
+                      ? initial_state(scene, m)
+                      : State{scene.run.t0, m.q0, Eigen::VectorXd::Zero(m.n1)};
+  std::cout << describe_fidelity(fidelity_report(m, s.q0, s.q1, s.t, scale), scale);
+}
+
+int info(const SceneOptions& o, bool fidelity) {
   const Scene scene = load_scene_with_overrides(o);
   const Model m = build_model_of(scene);
   check_memory("the conditioning of '" + m.name + "' (SVD of the velocity constraint Jacobian)",
@@ -60,6 +80,7 @@ int info(const SceneOptions& o) {
         "run: forward dynamics, initial state consistent (t0 = %g s, kinetic energy %.6g J)\n", s.t,
         kinetic_energy(m, s.q1));
   }
+  if (fidelity) print_fidelity(scene, m);
   return 0;
 }
 
@@ -71,7 +92,11 @@ Command add_info_command(CLI::App& app) {
       "info",
       "Describe a scene: bodies, variables, constraints, inputs, DOF, initial configuration");
   add_scene_options(sub, *o, false);
-  return {sub, [o] { return info(*o); }};
+  auto fidelity = std::make_shared<bool>(false);
+  sub->add_flag("--fidelity", *fidelity,
+                "Each spring's and torsional spring's own frequency against the run's time "
+                "scales, and which to reduce (docs/reduction.md)");
+  return {sub, [o, fidelity] { return info(*o, *fidelity); }};
 }
 
 }  // namespace mo2d::cli

@@ -136,6 +136,11 @@ Box2DWorld build_box2d_world(const Model& m, const Eigen::VectorXd& q0, const Ei
     refuse("the translated Model must be built with Reduction::none (every joint a constraint)",
            m.name);
   for (const SpringLoad& s : m.springs) refuse("spring '" + s.name + "' is not translated", s.name);
+  for (const ReducedSpring& s : m.reduced_springs)  // before its user position constraint
+    refuse("spring '" + s.spring.name +
+               "' reduced to a constraint is not translated (Box2D's distance joint with "
+               "min = max = rest length would be its equivalent; not mapped yet)",
+           s.spring.name);
   for (const PointLoad& f : m.forces)
     if (!f.fx.args.empty() || !f.fy.args.empty())
       refuse("force '" + f.name + "' depends on the state (not translated)", f.name);

@@ -245,6 +245,14 @@ struct SpringLoad {
   CompiledLaw tension;  // empty: linear
   SpringActs acts = SpringActs::both;
 };
+// A spring reduced to a constraint (SpringDef::reduce, src/model/reduced_springs.cpp): the user
+// position constraint |p_b - p_a| - spring.rest_length = 0, m.constraints[constraint], whose
+// multiplier is the tension, m.reactions[reaction] ("name.tension"). `spring` is the load it
+// replaces (not applied; its stiffness, damping or law are read by the fidelity report).
+struct ReducedSpring {
+  SpringLoad spring;
+  int constraint = -1, reaction = -1;
+};
 struct TorsionalLoad {
   std::string name;
   int body1 = -1, body2 = -1;  // -1: ground
@@ -363,6 +371,7 @@ struct Model {
   std::vector<PointLoad> forces;
   std::vector<TorqueLoad> torques;
   std::vector<SpringLoad> springs;
+  std::vector<ReducedSpring> reduced_springs;  // springs replaced by constraints (not loads)
   std::vector<TorsionalLoad> torsional_springs;
   std::vector<ChainLoad> chains;
   std::vector<NamedPoint> points;

@@ -8,7 +8,9 @@
 //   force F            F.fx, F.fy (world frame, N), F.power (F . v of its point, W)
 //   torque T           T.torque (N m), T.power (torque x omega of its body)
 //   spring S           S.length (m), S.rate (m/s), S.tension (N, > 0 pulls its ends together),
-//                      S.power (-tension x rate: the power of its forces on the mechanism)
+//                      S.power (-tension x rate: the power of its forces on the mechanism);
+//                      a spring reduced to a constraint: S.length, S.rate (its tension is the
+//                      reaction column S.tension)
 //   torsional spring K K.torque (on body 2, N m), K.rate (w2 - w1), K.power (torque x rate)
 //   named point P      P.x, P.y, P.vx, P.vy
 //   body B             B.com.x, B.com.y, B.com.vx, B.com.vy (centre of mass)

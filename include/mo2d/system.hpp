@@ -198,6 +198,16 @@ struct TorqueDef {
 // compressed below its rest length).
 enum class SpringActs { both, tension_only, compression_only };
 
+// How a spring is modelled (docs/reduction.md, "A stiff spring as a constraint"):
+//  - none: the spring-damper as written;
+//  - constraint: the k -> infinity limit. The spring is replaced by the holonomic constraint
+//    |p_b - p_a| - rest_length = 0 (rest_length > 0; the initial configuration is assembled onto
+//    it) whose multiplier is the tension T, reported as the reaction "name.tension". Its law,
+//    stiffness and damping are not used by the dynamics (the fidelity report still reads them).
+//    A unilateral spring stays bilateral: a tension of the wrong sign (a rope that would go
+//    slack) is a run warning naming the time.
+enum class SpringReduce { none, constraint };
+
 // A spring-damper between two points fixed in bodies ("ground" allowed), given in the System's
 // frame at the initial configuration. Its tension T pulls the points together when positive:
 //  - linear: T = k (l - rest_length) + c dl/dt; its elastic energy is a potential;
@@ -217,6 +227,7 @@ struct SpringDef {
   double damping = 0;      // N s/m (>= 0); with a tension law: must be 0
   Law tension{};           // N; empty: the linear law above
   SpringActs acts = SpringActs::both;
+  SpringReduce reduce = SpringReduce::none;
 };
 
 // How a chain or belt drive is modelled (src/dynamics/chain.hpp, docs/reduction.md): each of

@@ -10,6 +10,7 @@
 #include <memory>
 #include <sstream>
 
+#include "dynamics/slack.hpp"
 #include "forward/forward_run.hpp"
 #include "kinematics/sparse_kinematics.hpp"
 #include "linalg/small_lu.hpp"
@@ -382,6 +383,7 @@ Trajectory forward_dynamics(const Model& m, const State& initial, const ForwardO
   r.efforts.conservativeResize(used, Eigen::NoChange);
   r.reactions.conservativeResize(used, Eigen::NoChange);
   r.stats = d.stats;
+  detail::reduced_spring_slack(m, r, r.stats.warnings);
   return r;
 }
 

@@ -10,6 +10,7 @@
 
 #include "constraints/constraints.hpp"
 #include "dynamics/friction.hpp"
+#include "dynamics/slack.hpp"
 #include "inverse/inverse_stages.hpp"
 #include "kinematics/residuals.hpp"
 #include "kinematics/solve_positions.hpp"
@@ -472,6 +473,7 @@ Trajectory inverse_dynamics(const Model& m, std::span<const Prescribed> prescrib
   }
   finish_inverse_warnings(d);
   r.stats.warnings = d.warnings;
+  detail::reduced_spring_slack(m, r, r.stats.warnings);
   r.stats.cpu_seconds = detail::cpu_seconds() - start;
   return r;
 }

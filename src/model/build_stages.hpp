@@ -233,6 +233,9 @@ void add_loads(const Flat& flat, const Elements& el, const Reduced& red, Model& 
 // initial geometry once m.q0 is assembled.
 void add_chains(const Flat& flat, Model& m);
 void init_chains(Model& m);
+// A spring with reduce: constraint (reduced_springs.cpp): its constraint row (|p_b - p_a| = rest
+// length), the reaction "name.tension" and m.reduced_springs, instead of a load.
+void add_reduced_spring(const SpringLoad& s, int owner, Model& m);
 // Joint friction (frictions.cpp): after the rows (reactions, slides) are known.
 void add_frictions(const Flat& flat, const Elements& el, const Reduced& red, Model& m);
 // laws.cpp: m.quantities from the bodies, nodes, revolute joints, springs and points.

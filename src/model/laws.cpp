@@ -80,18 +80,21 @@ void joint_quantities(const Flat& flat, const Elements& el, const Reduced& red, 
   }
 }
 
+void spring_quantity(Model& m, const SpringLoad& s) {
+  Quantity q;
+  q.a = s.a;
+  q.b = s.b;
+  q.kind = K::distance;
+  put(m, s.name + ".length", q);
+  q.value = s.rest_length;
+  put(m, s.name + ".extension", q);
+  q.kind = K::distance_rate;
+  put(m, s.name + ".rate", q);
+}
+
 void spring_quantities(Model& m) {
-  for (const SpringLoad& s : m.springs) {
-    Quantity q;
-    q.a = s.a;
-    q.b = s.b;
-    q.kind = K::distance;
-    put(m, s.name + ".length", q);
-    q.value = s.rest_length;
-    put(m, s.name + ".extension", q);
-    q.kind = K::distance_rate;
-    put(m, s.name + ".rate", q);
-  }
+  for (const SpringLoad& s : m.springs) spring_quantity(m, s);
+  for (const ReducedSpring& s : m.reduced_springs) spring_quantity(m, s.spring);
   for (const NamedPoint& p : m.points) put_point(m, p.name, p.point, true, true);
 }
 

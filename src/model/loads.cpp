@@ -79,7 +79,10 @@ void add_springs(const Flat& flat, Model& m) {
     if (sp.def.tension && (l.stiffness != 0 || l.damping != 0))
       throw Error(what + ": a tension law replaces stiffness and damping (give one or the other)",
                   name);
-    m.springs.push_back(std::move(l));
+    if (sp.def.reduce == SpringReduce::constraint)
+      add_reduced_spring(l, sp.owner, m);  // reduced_springs.cpp
+    else
+      m.springs.push_back(std::move(l));
   }
 }
 
@@ -175,26 +178,20 @@ void compile_laws(const Flat& flat, Model& m) {
     m.torques[k].torque =
         compile_law(m, flat.torques[k].def.torque, "torque '" + m.torques[k].name + "'",
                     m.torques[k].name, flat.torques[k].prefix);
-  for (size_t k = 0; k < flat.springs.size(); ++k) {
-    SpringLoad& s = m.springs[k];
+  size_t loaded = 0, reduced = 0;  // m.springs and m.reduced_springs in the order of flat.springs
+  for (const auto& sp : flat.springs) {
+    SpringLoad& s = sp.def.reduce == SpringReduce::none ? m.springs[loaded++]
+                                                        : m.reduced_springs[reduced++].spring;
     Quantity q;
     q.a = s.a;
     q.b = s.b;
     q.kind = K::distance;
-    const std::vector<std::pair<std::string, Quantity>> locals = {{"length", q},
-                                                                  {"extension",
-                                                                   [&] {
-                                                                     Quantity e = q;
-                                                                     e.value = s.rest_length;
-                                                                     return e;
-                                                                   }()},
-                                                                  {"rate", [&] {
-                                                                     Quantity r = q;
-                                                                     r.kind = K::distance_rate;
-                                                                     return r;
-                                                                   }()}};
-    s.tension = compile_law(m, flat.springs[k].def.tension, "spring '" + s.name + "'.tension",
-                            s.name, flat.springs[k].prefix, locals);
+    Quantity e = q;
+    e.value = s.rest_length;
+    Quantity r = q;
+    r.kind = K::distance_rate;
+    s.tension = compile_law(m, sp.def.tension, "spring '" + s.name + "'.tension", s.name, sp.prefix,
+                            {{"length", q}, {"extension", e}, {"rate", r}});
   }
   for (size_t k = 0; k < flat.torsional.size(); ++k) {
     TorsionalLoad& l = m.torsional_springs[k];

@@ -51,6 +51,8 @@ std::vector<std::string> output_column_labels(const Model& m, const OutputReques
     for (const PointLoad& f : m.forces) add(f.name, {"fx", "fy", "power"});
     for (const TorqueLoad& t : m.torques) add(t.name, {"torque", "power"});
     for (const SpringLoad& s : m.springs) add(s.name, {"length", "rate", "tension", "power"});
+    // reduced to a constraint: the tension is the reaction "S.tension", the power 0
+    for (const ReducedSpring& s : m.reduced_springs) add(s.spring.name, {"length", "rate"});
     for (const TorsionalLoad& s : m.torsional_springs) add(s.name, {"torque", "rate", "power"});
     for (const ChainLoad& s : m.chains)
       add(s.name, {"upper.length", "upper.tension", "lower.length", "lower.tension", "power"});
@@ -88,6 +90,14 @@ void output_column_values(const Model& m, const OutputRequest& q,
     for (const SpringLoad& s : m.springs) {
       const SpringValue v = spring_value(m, s, q0, q1, t);
       for (double x : {v.length, v.rate, v.tension, -v.tension * v.rate}) put(x);
+    }
+    for (const ReducedSpring& s : m.reduced_springs) {
+      const detail::PointState a = detail::point_state(m, s.spring.a, q0, q1),
+                               b = detail::point_state(m, s.spring.b, q0, q1);
+      const Vec2 d = b.p - a.p;
+      const double l = d.norm();
+      put(l);
+      put(l > 0 ? d.dot(b.v - a.v) / l : 0.0);
     }
     for (const TorsionalLoad& s : m.torsional_springs) {
       const TorsionalValue v = torsional_value(m, s, q0, q1, t);

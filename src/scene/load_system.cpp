@@ -336,6 +336,16 @@ SpringActs spring_acts(const Reader& r, const YAML::Node& node, const std::strin
                    did_you_mean(v, names));
 }
 
+SpringReduce spring_reduce(const Reader& r, const YAML::Node& node, const std::string& what) {
+  if (!node.IsDefined()) return SpringReduce::none;
+  const std::string v = r.string(node, what + ".reduce");
+  if (v == "none") return SpringReduce::none;
+  if (v == "constraint") return SpringReduce::constraint;
+  const std::vector<std::string> names = {"none", "constraint"};
+  r.fail(node,
+         what + ".reduce: '" + v + "' is not one of none, constraint" + did_you_mean(v, names));
+}
+
 void read_loads(Context& c, const YAML::Node& node, bool root) {
   const Reader& r = c.r;
   if (!node.IsDefined() || node.IsNull()) return;
@@ -375,7 +385,7 @@ void read_loads(Context& c, const YAML::Node& node, bool root) {
     const std::string what = "spring '" + key.Scalar() + "'";
     r.check_keys(value,
                  {"body_a", "point_a", "body_b", "point_b", "rest_length", "stiffness", "damping",
-                  "tension", "acts"},
+                  "tension", "acts", "reduce"},
                  what);
     SpringDef s;
     s.name = key.Scalar();
@@ -391,6 +401,7 @@ void read_loads(Context& c, const YAML::Node& node, bool root) {
       r.fail(value["tension"],
              what + ": a tension law replaces stiffness and damping (give one or the other)");
     s.acts = spring_acts(r, value["acts"], what);
+    s.reduce = spring_reduce(r, value["reduce"], what);
     c.info.elements.emplace_back(s.name, r.at(key));
     c.out.add_spring(std::move(s));
   }

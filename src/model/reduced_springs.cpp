@@ -1,0 +1,104 @@
+// Stage 6 of build_model, a spring reduced to a constraint (SpringDef::reduce; docs/reduction.md,
+// "A stiff spring as a constraint"). The limit k -> infinity of a spring whose tension T stays
+// finite holds its length at the rest length (extension T / k -> 0):
+//
+//   psi(q0) = |p_b(q0) - p_a(q0)| - l_0 = 0,   p = (1 - gamma) p_i + gamma p_j + rho z x (p_j -
+//   p_i)
+//
+// (Example 2.6 (b), the points by local nodes). It is written as a user position constraint
+// (constraints/user.hpp) on the coordinates of the two points' nodes, whose Jets give the velocity
+// row A = d psi / d q0 = e^T (dp_b/dq0 - dp_a/dq0) (e the unit vector a -> b) and the acceleration
+// bias exactly. The constraint force is -A^T lambda = -lambda e^T (...), and the spring's force
+// on the mechanism is -T d l / d q0: so T = lambda, reported as the reaction "name.tension"
+// (factor +1), the label the spring's tension had.
+#include <array>
+#include <cmath>
+
+#include "constraints/common.hpp"
+#include "mo2d/error.hpp"
+#include "model/build_stages.hpp"
+
+namespace mo2d::build {
+namespace {
+
+// One node of a point: its x argument (y is the next one), or -1 and its fixed position.
+struct NodeArg {
+  int arg = -1;
+  Vec2 fixed{0, 0};
+};
+struct JetPoint {
+  Jet x, y;
+};
+
+// A point of the psi function: ground (fixed), one node, or two nodes with (gamma, rho).
+struct PointArgs {
+  NodeArg i, j;
+  bool two = false;
+  double gamma = 0, rho = 0;
+};
+
+JetPoint node_jet(const NodeArg& n, std::span<const Jet> x) {
+  if (n.arg < 0) return {Jet(n.fixed.x()), Jet(n.fixed.y())};
+  return {x[n.arg], x[n.arg + 1]};
+}
+
+// Example 2.6 (b) on Jets (detail::combine_point on doubles).
+JetPoint point_jet(const PointArgs& p, std::span<const Jet> x) {
+  const JetPoint a = node_jet(p.i, x);
+  if (!p.two) return a;
+  const JetPoint b = node_jet(p.j, x);
+  const Jet g(p.gamma), r(p.rho), one_g(1 - p.gamma);
+  return {one_g * a.x + r * a.y + g * b.x - r * b.y, -r * a.x + one_g * a.y + r * b.x + g * b.y};
+}
+
+NodeArg node_arg(const NodeRef& n, std::vector<VarRef>& args) {
+  if (n.var < 0) return {-1, n.fixed};
+  const int at = static_cast<int>(args.size());
+  args.push_back(detail::ref_x(n));
+  args.push_back(detail::ref_y(n));
+  return {at, {0, 0}};
+}
+
+PointArgs point_args(const Model& m, const BodyPoint& bp, std::vector<VarRef>& args) {
+  PointArgs p;
+  if (bp.body < 0) {
+    p.i.fixed = bp.fixed;
+    return p;
+  }
+  const Body& b = m.bodies[bp.body];
+  p.i = node_arg(b.nodes[bp.ci], args);
+  if (bp.cj < 0) return p;
+  p.two = true;
+  p.j = node_arg(b.nodes[bp.cj], args);
+  p.gamma = bp.gamma;
+  p.rho = bp.rho;
+  return p;
+}
+
+}  // namespace
+
+void add_reduced_spring(const SpringLoad& s, int owner, Model& m) {
+  const std::string what = "spring '" + s.name + "' (reduce: constraint)";
+  if (!(s.rest_length > 0))
+    throw Error(what +
+                    ": needs rest_length > 0 (the length the constraint holds; a zero length "
+                    "has no direction)",
+                s.name);
+  Constraint::UserPosition c;
+  const PointArgs a = point_args(m, s.a, c.args), b = point_args(m, s.b, c.args);
+  if (c.args.empty()) throw Error(what + " joins two fixed points", s.name);
+  const double length = s.rest_length;
+  c.psi = [a, b, length](std::span<const Jet> x, Jet) {
+    const JetPoint pa = point_jet(a, x), pb = point_jet(b, x);
+    return hypot(pb.x - pa.x, pb.y - pa.y) - Jet(length);  // |p_b - p_a| - l_0
+  };
+  ReducedSpring r;
+  r.spring = s;
+  r.constraint = add_constraint(m, Constraint{.name = s.name, .owner = owner, .def = std::move(c)},
+                                1, 1, {".length"}, {".rate"});
+  r.reaction = m.n_reactions();
+  m.reactions.push_back({s.name + ".tension", m.constraints[r.constraint].row1, 1});  // T = lambda
+  m.reduced_springs.push_back(std::move(r));
+}
+
+}  // namespace mo2d::build
