@@ -29,9 +29,11 @@ double double_fourbar_error(double accuracy, int samples) {
   const State s = consistent_state(m, {.positions = {}, .velocities = {{"crank0.w", -1.0}}});
   const Trajectory r =
       forward_dynamics(m, s, {.t0 = 0, .t1 = 10, .samples = samples, .accuracy = accuracy});
-  // erk8 from 1e-6 up, rk4 below (src/forward/accuracy.cpp)
+  // erk8 from 1e-5 up, dopri5 from 1e-6, rk4 below (src/forward/accuracy.cpp)
   EXPECT_EQ(options_for_accuracy(m, {.accuracy = accuracy}).integrator,
-            accuracy >= 1e-6 ? Integrator::erk8 : Integrator::rk4);
+            accuracy >= 1e-5   ? Integrator::erk8
+            : accuracy >= 1e-6 ? Integrator::dopri5
+                               : Integrator::rk4);
   const int k = static_cast<int>(r.time.size()) - 1;
   return std::hypot(r.q0(k, m.coordinate("crank0.B.x")) - 0.328458111541,
                     r.q0(k, m.coordinate("crank0.B.y")) - 0.944518538179) /
@@ -41,7 +43,7 @@ double double_fourbar_error(double accuracy, int samples) {
 }  // namespace
 
 TEST(Accuracy, DoubleFourBarReachesTheAccuracyAskedFor) {
-  for (double a : {1e-2, 1e-3, 1e-5, 1e-6, 1e-7, 1e-8, 1e-9})
+  for (double a : {1e-2, 1e-3, 1e-5, 3e-6, 1e-6, 1e-7, 1e-8, 1e-9})
     for (int samples : {11, 101}) {
       const double e = double_fourbar_error(a, samples);
       EXPECT_LE(e, a) << "accuracy " << a << " samples " << samples;
@@ -63,7 +65,7 @@ TEST(Accuracy, PendulumQuarterPeriod) {
     a_ = an;
   }
   const double quarter = std::sqrt(L / g) * std::numbers::pi / (2 * a_);
-  for (double a : {1e-3, 1e-6, 1e-9}) {
+  for (double a : {1e-3, 1e-5, 1e-6, 1e-9}) {
     const Trajectory r = forward_dynamics(m, s, {.t1 = 3 * quarter, .samples = 4, .accuracy = a});
     // at T/4 and 3T/4 the tip is at the bottom
     EXPECT_LE(std::abs(r.q0(1, m.coordinate("link.P.x"))) / m.scale, a) << a;
@@ -80,7 +82,7 @@ TEST(Accuracy, RackPinionSceneClosedForm) {
     EXPECT_EQ(scene.run.accuracy, a);
     const Model m = build_scene_model(scene);
     const ForwardOptions o = forward_options(scene, m);
-    EXPECT_EQ(o.integrator, a >= 1e-6 ? Integrator::erk8 : Integrator::rk4);
+    EXPECT_EQ(o.integrator, a >= 1e-5 ? Integrator::erk8 : Integrator::rk4);  // no 1e-6 here
     const Trajectory r = forward_dynamics(m, initial_state(scene, m), o);
     const double rr = 0.05, mass = 3, I = 0.01, k = 200, T = 0.5;
     const double xe = -T / (rr * k), w = std::sqrt(k / (mass + I / (rr * rr)));
