@@ -6,6 +6,7 @@
 #include <cmath>
 #include <limits>
 #include <numbers>
+#include <sstream>
 #include <string>
 
 #include "mo2d/forward.hpp"
@@ -38,6 +39,13 @@ double double_fourbar_error(double accuracy, int samples) {
   return std::hypot(r.q0(k, m.coordinate("crank0.B.x")) - 0.328458111541,
                     r.q0(k, m.coordinate("crank0.B.y")) - 0.944518538179) /
          m.scale;
+}
+
+// a number as the command line writes it ("1e-09"; std::to_string gives "0.000000")
+std::string text(double v) {
+  std::ostringstream s;
+  s << v;
+  return s.str();
 }
 
 }  // namespace
@@ -78,7 +86,7 @@ TEST(Accuracy, PendulumQuarterPeriod) {
 TEST(Accuracy, RackPinionSceneClosedForm) {
   for (double a : {1e-4, 1e-7, 1e-9}) {
     const Scene scene = load_scene(accuracy_scene_path("rack_pinion"), {},
-                                   std::vector<RunOverride>{{"accuracy", std::to_string(a)}});
+                                   std::vector<RunOverride>{{"accuracy", text(a)}});
     EXPECT_EQ(scene.run.accuracy, a);
     const Model m = build_scene_model(scene);
     const ForwardOptions o = forward_options(scene, m);

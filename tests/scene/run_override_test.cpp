@@ -122,7 +122,7 @@ TEST(RunOverride, AccuracyAndMethodSettings) {
             std::string::npos);
   EXPECT_NE(error_of({{"accuracy", "1"}}).find("must be in [1e-09, 0.01]"), std::string::npos);
   std::string both = kScene;
-  both.replace(both.find("  step: 0.01"), 11, "  accuracy: 1e-6");
+  both.replace(both.find("  step: 0.01"), 12, "  accuracy: 1e-6");
   try {
     parse_scene(both, "p.yaml");
     ADD_FAILURE() << "accuracy with integrator accepted";
@@ -133,7 +133,7 @@ TEST(RunOverride, AccuracyAndMethodSettings) {
   }
   // the scene's accuracy, replaced by a method from the command line
   std::string asked = kScene;
-  asked.replace(asked.find("  integrator: rk4\n  step: 0.01"), 29, "  accuracy: 1e-6");
+  asked.replace(asked.find("  integrator: rk4\n  step: 0.01"), 30, "  accuracy: 1e-6");
   EXPECT_EQ(parse_scene(asked, "p.yaml").run.accuracy, 1e-6);
   const Scene replaced =
       parse_scene(asked, "p.yaml", {}, std::vector<RunOverride>{{"integrator", "dopri5"}});
