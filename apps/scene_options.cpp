@@ -44,12 +44,16 @@ constexpr RunFlag kInverseFlags[] = {
     {"tolerance", "inverse: position tolerance |psi|, relative to the model size (run.tolerance)"},
 };
 constexpr RunFlag kForwardFlags[] = {
-    {"integrator", "cvode_bdf, cvode_adams, rk4, dopri5 or baumgarte (run.integrator)"},
+    {"integrator", "cvode_bdf, cvode_adams, rk4, dopri5, erk6, erk8 or baumgarte (run.integrator)"},
     {"formulation", "augmented_lagrangian, lagrange or null_space (run.formulation)"},
     {"linear_algebra", "automatic, dense or sparse matrices of a forward run (run.linear_algebra)"},
-    {"rtol", "relative tolerance of cvode_bdf, cvode_adams and dopri5 (run.rtol)"},
-    {"atol", "absolute tolerance of cvode_bdf, cvode_adams and dopri5 (run.atol)"},
+    {"rtol", "relative tolerance of cvode_bdf, cvode_adams, dopri5, erk6 and erk8 (run.rtol)"},
+    {"atol", "absolute tolerance of cvode_bdf, cvode_adams, dopri5, erk6 and erk8 (run.atol)"},
     {"step", "s, fixed step of rk4 and baumgarte (run.step)"},
+    {"accuracy",
+     "error of the positions asked for, relative to the mechanism's size: mo2d picks the "
+     "integrator and its tolerances (run.accuracy; not with --integrator, --rtol, --atol, "
+     "--step)"},
 };
 
 template <std::size_t N>

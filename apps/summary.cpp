@@ -91,6 +91,7 @@ std::string forward_summary(const SceneOptions& o, const Scene& s, const Model& 
               {"rtol", run.rtol},
               {"atol", run.atol},
               {"step", run.step},
+              {"accuracy", run.accuracy},
               {"max_steps", run.max_steps},
               {"max_seconds", run.max_seconds},
               {"max_memory", run.max_memory}};

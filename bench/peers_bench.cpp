@@ -139,14 +139,22 @@ void speed_vs_error(bool long_runs) {
     o.samples = 2;
     const Trajectory r = forward_dynamics(m, st, o);
     const double e = std::hypot(r.q0(1, ix) - kRefX, r.q0(1, iy) - kRefY);
-    std::printf("| mo2d %s | %s | %.2e | %ld | %.2f |\n", to_string(o.integrator), setting, e,
-                r.stats.steps, 1e3 * r.stats.cpu_seconds);
+    std::printf("| mo2d %s | %s | %.2e | %ld | %.2f |\n",
+                to_string(options_for_accuracy(m, o).integrator), setting, e, r.stats.steps,
+                1e3 * r.stats.cpu_seconds);
   };
   mo2d_row({.integrator = Integrator::dopri5, .rtol = 3e-6, .atol = 3e-6}, "tol 3e-6");
   mo2d_row({.integrator = Integrator::dopri5, .rtol = 1e-7, .atol = 1e-7}, "tol 1e-7");
   mo2d_row({.integrator = Integrator::dopri5, .rtol = 1e-9, .atol = 1e-9}, "tol 1e-9");
   mo2d_row({.integrator = Integrator::rk4, .step = 2e-3}, "h 2e-3");
   mo2d_row({.integrator = Integrator::cvode_bdf, .rtol = 1e-8, .atol = 1e-8}, "tol 1e-8");
+  // the high-order methods, and what run.accuracy picks (src/forward/accuracy.cpp)
+  mo2d_row({.integrator = Integrator::erk6, .rtol = 1e-5, .atol = 1e-5}, "tol 1e-5");
+  mo2d_row({.integrator = Integrator::erk8, .rtol = 1e-5, .atol = 1e-5}, "tol 1e-5");
+  mo2d_row({.accuracy = 1e-3}, "accuracy 1e-3");
+  mo2d_row({.accuracy = 1e-6}, "accuracy 1e-6");
+  mo2d_row({.accuracy = 1e-5}, "accuracy 1e-5");
+  mo2d_row({.accuracy = 1e-9}, "accuracy 1e-9");
   for (double h : {6.25e-3, 2e-3, 6.25e-4, 6.25e-5, 6.25e-6}) {
     if (h < 1e-5 && !long_runs) continue;
     MjRun r(2, h);

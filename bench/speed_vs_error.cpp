@@ -32,8 +32,8 @@ int main() {
       const int k = static_cast<int>(r.time.size()) - 1;
       const VectorXd E = r.kinetic + r.potential;
       std::printf("| %s | %s | (%.9f, %.9f) | %.2e | %ld | %ld | %.1f | %.1e | %.1e |\n",
-                  to_string(o.integrator), setting.c_str(), r.q0(k, ix), r.q0(k, iy),
-                  std::hypot(r.q0(k, ix) - rx, r.q0(k, iy) - ry), r.stats.steps,
+                  to_string(options_for_accuracy(m, o).integrator), setting.c_str(), r.q0(k, ix),
+                  r.q0(k, iy), std::hypot(r.q0(k, ix) - rx, r.q0(k, iy) - ry), r.stats.steps,
                   r.stats.rhs_evaluations, 1e3 * r.stats.cpu_seconds, r.residuals.maxCoeff(),
                   (E.array() - E[0]).abs().maxCoeff());
     } catch (const std::exception& e) {
@@ -50,8 +50,12 @@ int main() {
     row({.integrator = Integrator::rk4, .step = h}, g("h = ", h));
   for (double tol : {1e-7, 1e-8, 3e-9, 1e-9})
     row({.integrator = Integrator::dopri5, .rtol = tol, .atol = tol}, g("tol ", tol));
+  for (Integrator i : {Integrator::erk6, Integrator::erk8})
+    for (double tol : {1e-4, 1e-5, 1e-6, 1e-7, 1e-8, 1e-9, 1e-10, 1e-11, 1e-12})
+      row({.integrator = i, .rtol = tol, .atol = tol}, g("tol ", tol));
   for (double tol : {1e-6, 1e-8, 1e-10})
     row({.integrator = Integrator::cvode_bdf, .rtol = tol, .atol = tol}, g("tol ", tol));
+  for (double a : {1e-3, 1e-5, 1e-6, 1e-8, 1e-9}) row({.accuracy = a}, g("accuracy ", a));
   row({.integrator = Integrator::cvode_adams, .rtol = 1e-8, .atol = 1e-8},
       "tol 1e-8, no projection");
   row({.integrator = Integrator::baumgarte, .step = 1e-3}, "h = 1e-3, alpha 20/s");

@@ -37,8 +37,10 @@ enum class Integrator {
                 // (CVODE projects only BDF): stops at a near-singular configuration
   rk4,          // classical Runge-Kutta, fixed step, projection each step
   dopri5,       // Dormand-Prince 5(4), adaptive step (rtol, atol), projection each step
-  baumgarte,    // Mo2DPack-compatible: RK4, velocity constraints stabilized by Baumgarte, no
-                // projection
+  erk6,  // Verner 6(5), 8 stages (SUNDIALS ARKODE's table), adaptive step, projection each step
+  erk8,  // Fehlberg 8(7), 13 stages (SUNDIALS ARKODE's table), adaptive step, projection each step
+  baumgarte,  // Mo2DPack-compatible: RK4, velocity constraints stabilized by Baumgarte, no
+              // projection
 };
 enum class Formulation { augmented_lagrangian, lagrange, null_space };
 // The matrices of the accelerations, the projection and the reactions (docs/performance.md,
@@ -86,6 +88,11 @@ struct ForwardOptions {
   Formulation formulation = Formulation::augmented_lagrangian;
   double rtol = 1e-8, atol = 1e-10;  // CVODE and dopri5 tolerances (atol in SI units)
   double step = 1e-3;  // fixed step (rk4, baumgarte); shortened so that steps end on output times
+  // > 0: the accuracy asked for, the error of the positions relative to the mechanism's size
+  // (Model::scale) that the run should reach; forward_dynamics then picks the integrator and its
+  // tolerances (options_for_accuracy) and integrator, rtol, atol and step are not used. 0: the
+  // integrator and tolerances above. In [kMinAccuracy, kMaxAccuracy].
+  double accuracy = 0;
   double baumgarte_alpha = 20.0;  // 1/s, velocity-constraint feedback of the baumgarte mode
   double penalty = 0;             // augmented Lagrangian alpha (0: chosen from the mass scale)
   LinearAlgebra linear_algebra = LinearAlgebra::automatic;  // dense or sparse matrices (above)
@@ -124,6 +131,18 @@ struct ForwardOptions {
   std::function<void(const RunProgress&)> monitor{};
   double monitor_interval = 1.0;
 };
+
+// The bounds of ForwardOptions::accuracy (src/forward/accuracy.cpp: the range calibrated; below
+// it, the regularized accelerations next to singular configurations and round-off limit what the
+// integrators reach).
+extern const double kMinAccuracy, kMaxAccuracy;
+
+// o with the integrator and tolerances chosen for o.accuracy on m (unchanged if o.accuracy is 0,
+// Error "accuracy" if it is out of its bounds): the
+// cheapest setting that reached the accuracy on the calibration scenes (docs/performance.md,
+// "Accuracy asked for"). A calibration, not a guarantee: the error of a run grows with its
+// duration and with the mechanism's sensitivity, so check a critical run with a tighter accuracy.
+ForwardOptions options_for_accuracy(const Model& m, ForwardOptions o);
 
 // Throws Error (element: the option's name, "t0", "t1", "samples", "step", "max_steps", ...)
 // when the options cannot give a correct run of m: a time grid double precision does not

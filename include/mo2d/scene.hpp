@@ -51,10 +51,13 @@ struct RunSettings {
   LinearAlgebra linear_algebra = LinearAlgebra::automatic;  // forward: dense or sparse matrices
   double rtol = 1e-8, atol = 1e-10;                         // forward, CVODE
   double step = 1e-3;                                       // forward, fixed-step integrators
-  int max_steps = kDefaultMaxSteps;                         // forward: step budget of the run
-  double max_seconds = kDefaultMaxSeconds;                  // wall-clock budget of the run
-  double max_memory = kDefaultMaxMemory;                    // bytes of dense matrices and results
-  bool csv = true, json = true;                             // outputs
+  // forward: > 0, the accuracy asked for (ForwardOptions::accuracy): mo2d picks the integrator and
+  // its tolerances, and integrator, rtol, atol and step are not used; 0: not asked for
+  double accuracy = 0;
+  int max_steps = kDefaultMaxSteps;         // forward: step budget of the run
+  double max_seconds = kDefaultMaxSeconds;  // wall-clock budget of the run
+  double max_memory = kDefaultMaxMemory;    // bytes of dense matrices and results
+  bool csv = true, json = true;             // outputs
 };
 
 // A label written in the scene (prescribed coordinate, initial value, effort) with its place, so
@@ -123,8 +126,8 @@ struct RunOverride {
   std::string value{};
 };
 inline constexpr const char* kRunOverrideKeys[] = {
-    "t0",   "duration", "samples",   "tolerance",   "integrator", "formulation",   "rtol",
-    "atol", "step",     "max_steps", "max_seconds", "max_memory", "linear_algebra"};
+    "t0",   "duration", "samples",   "tolerance",   "integrator", "formulation",    "rtol",
+    "atol", "step",     "max_steps", "max_seconds", "max_memory", "linear_algebra", "accuracy"};
 std::string run_override_flag(const std::string& key);  // "max_steps" -> "--max-steps"
 
 // Read a scene file / text. Throws SceneError (file:line:column) on any problem.

@@ -17,11 +17,13 @@
 namespace mo2d::py_bind {
 
 Integrator to_integrator(const std::string& s) {
-  for (Integrator i : {Integrator::cvode_bdf, Integrator::cvode_adams, Integrator::rk4,
-                       Integrator::dopri5, Integrator::baumgarte})
+  for (Integrator i :
+       {Integrator::cvode_bdf, Integrator::cvode_adams, Integrator::rk4, Integrator::dopri5,
+        Integrator::erk6, Integrator::erk8, Integrator::baumgarte})
     if (s == to_string(i)) return i;
-  throw Error("integrator: cvode_bdf, cvode_adams, rk4, dopri5 or baumgarte, not '" + s + "'",
-              "integrator");
+  throw Error(
+      "integrator: cvode_bdf, cvode_adams, rk4, dopri5, erk6, erk8 or baumgarte, not '" + s + "'",
+      "integrator");
 }
 
 Formulation to_formulation(const std::string& s) {
@@ -141,7 +143,8 @@ void bind_runs(py::module_& m) {
       py::arg("params") = Params{}, py::arg("max_seconds") = kDefaultMaxSeconds,
       py::arg("formulation") = "augmented_lagrangian", py::arg("max_steps") = kDefaultMaxSteps,
       py::arg("stop_when") = py::none(),
-      "efforts: [(input label, law)]; integrator: cvode_bdf, cvode_adams, rk4, dopri5, baumgarte; "
+      "efforts: [(input label, law)]; integrator: cvode_bdf, cvode_adams, rk4, dopri5, erk6, erk8, "
+      "baumgarte; "
       "stop_when(t, q0, q1) -> float: the run stops where it changes sign");
   m.def(
       "crosscheck_inverse",

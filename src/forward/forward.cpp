@@ -32,6 +32,10 @@ const char* to_string(Integrator i) {
       return "rk4";
     case Integrator::dopri5:
       return "dopri5";
+    case Integrator::erk6:
+      return "erk6";
+    case Integrator::erk8:
+      return "erk8";
     case Integrator::baumgarte:
       return "baumgarte";
   }
@@ -289,6 +293,7 @@ void check_forward_options(const Model& m, const ForwardOptions& o) {
   if (o.t1 < o.t0) throw order();
   check_time_grid(run, o.t0, o.t1, o.samples);  // t1 == t0 by rounding: unresolved samples
   if (!(o.t1 > o.t0)) throw order();
+  (void)options_for_accuracy(m, o);  // refuses an accuracy out of its bounds
   if (!(o.max_steps > 0))
     throw Error("forward dynamics: max_steps must be > 0 (got " + std::to_string(o.max_steps) + ")",
                 "max_steps");
@@ -314,7 +319,8 @@ void check_forward_options(const Model& m, const ForwardOptions& o) {
                   "t0");
   }
   if ((o.integrator == Integrator::cvode_bdf || o.integrator == Integrator::cvode_adams ||
-       o.integrator == Integrator::dopri5) &&
+       o.integrator == Integrator::dopri5 || o.integrator == Integrator::erk6 ||
+       o.integrator == Integrator::erk8) &&
       !(o.rtol > 0 && o.atol > 0 && std::isfinite(o.rtol) && std::isfinite(o.atol)))
     throw Error("forward dynamics: tolerances must be positive (rtol " + fmt(o.rtol) + ", atol " +
                     fmt(o.atol) + ")",
@@ -329,7 +335,8 @@ void check_forward_options(const Model& m, const ForwardOptions& o) {
                forward_memory_bytes(m, o), o.max_memory, model_sizes(m), "max_memory");
 }
 
-Trajectory forward_dynamics(const Model& m, const State& initial, const ForwardOptions& o) {
+Trajectory forward_dynamics(const Model& m, const State& initial, const ForwardOptions& options) {
+  const ForwardOptions o = options_for_accuracy(m, options);
   check_forward_options(m, o);
   if (m.n1 == 0)  // nothing to integrate (a scene without bodies, or every body fixed)
     throw Error("forward dynamics of '" + m.name +
@@ -357,6 +364,8 @@ Trajectory forward_dynamics(const Model& m, const State& initial, const ForwardO
   switch (o.integrator) {
     case Integrator::rk4:
     case Integrator::dopri5:
+    case Integrator::erk6:
+    case Integrator::erk8:
     case Integrator::baumgarte:
       detail::run_explicit_rk(m, d, s0, o, rec);
       break;

@@ -1,6 +1,10 @@
-// Forward dynamics: explicit Runge-Kutta drivers. rk4 (classical, fixed step) and dopri5
-// (Dormand-Prince 5(4), adaptive step) project the state on the constraint manifolds after every
-// step; baumgarte (RK4 with Baumgarte's velocity feedback, Mo2DPack's scheme) does not.
+// Forward dynamics: explicit Runge-Kutta drivers. rk4 (classical, fixed step), dopri5
+// (Dormand-Prince 5(4), adaptive step), erk6 (Verner 6(5), 8 stages) and erk8 (Fehlberg 8(7), 13
+// stages) project the state on the constraint manifolds after every step; baumgarte (RK4 with
+// Baumgarte's velocity feedback, Mo2DPack's scheme) does not. The erk6/erk8 coefficients are
+// SUNDIALS ARKODE's tables (ARKodeButcherTable_LoadERK); the loop is mo2d's, not ERKStep: ERKStep
+// turns a recoverable right-hand-side failure into ARK_UNREC_RHSFUNC_ERR (it cannot redo a step
+// whose stage falls on a singular instant, below, nor check the step's end point before accepting).
 //
 // Stepping over singular instants: where the constraint Jacobian loses rank, the accelerations are
 // regularized and not accurate (ForwardData::accel_ok). The true motion is smooth through such an
@@ -9,7 +13,10 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <cstdio>
 #include <limits>
+// after <cstdio>: arkode_butcher.h uses FILE without including <stdio.h>
+#include <arkode/arkode_butcher_erk.h>
 
 #include "forward/forward_run.hpp"
 #include "mo2d/dynamics.hpp"
@@ -19,12 +26,14 @@
 namespace mo2d::detail {
 namespace {
 
-// Explicit Butcher tableau, up to 7 stages. bhat: embedded lower-order weights (adaptive only).
+// Explicit Butcher tableau, up to 13 stages. bhat: embedded lower-order weights (adaptive only).
+constexpr int kMaxStages = 13;
 struct Tableau {
   int stages = 0;
-  int order = 0;  // of the propagated solution (b)
-  std::array<std::array<double, 7>, 7> a{};
-  std::array<double, 7> b{}, bhat{}, c{};
+  int order = 0;           // of the propagated solution (b)
+  int embedded_order = 0;  // of bhat; the error estimate is O(h^(embedded_order + 1))
+  std::array<std::array<double, kMaxStages>, kMaxStages> a{};
+  std::array<double, kMaxStages> b{}, bhat{}, c{};
   bool embedded = false;
 };
 
@@ -46,6 +55,7 @@ Tableau dormand_prince_54() {
   Tableau t;
   t.stages = 7;
   t.order = 5;
+  t.embedded_order = 4;
   t.embedded = true;
   t.c = {0, 1.0 / 5, 3.0 / 10, 4.0 / 5, 8.0 / 9, 1, 1};
   t.a[1] = {1.0 / 5};
@@ -58,6 +68,42 @@ Tableau dormand_prince_54() {
   t.bhat = {5179.0 / 57600, 0,       7571.0 / 16695, 393.0 / 640, -92097.0 / 339200,
             187.0 / 2100,   1.0 / 40};
   return t;
+}
+
+// An embedded table of ARKODE (b: the propagated solution, d: the embedding), copied.
+Tableau arkode_table(ARKODE_ERKTableID id) {
+  ARKodeButcherTable bt = ARKodeButcherTable_LoadERK(id);
+  if (bt == nullptr || bt->stages > kMaxStages || bt->d == nullptr) {
+    ARKodeButcherTable_Free(bt);
+    throw Error("forward dynamics: SUNDIALS ARKODE did not provide Butcher table " +
+                std::to_string(static_cast<int>(id)));
+  }
+  Tableau t;
+  t.stages = bt->stages;
+  t.order = bt->q;
+  t.embedded_order = bt->p;
+  t.embedded = true;
+  for (int i = 0; i < t.stages; ++i) {
+    for (int j = 0; j < i; ++j) t.a[i][j] = bt->A[i][j];
+    t.b[i] = bt->b[i];
+    t.bhat[i] = bt->d[i];
+    t.c[i] = bt->c[i];
+  }
+  ARKodeButcherTable_Free(bt);
+  return t;
+}
+
+Tableau tableau(Integrator i) {
+  switch (i) {
+    case Integrator::dopri5:
+      return dormand_prince_54();
+    case Integrator::erk6:  // Verner (1978) 6(5), 8 stages
+      return arkode_table(ARKODE_VERNER_8_5_6);
+    case Integrator::erk8:  // Fehlberg (1968) 8(7), 13 stages
+      return arkode_table(ARKODE_FEHLBERG_13_7_8);
+    default:
+      return classical_rk4();
+  }
 }
 
 // Step-length factors tried in turn when a stage falls on a singular instant: shorter ones first,
@@ -136,13 +182,18 @@ class RkDriver {
     d_.stats.t_end = t;
     if (!budget_.stall_warning().empty() && d_.stats.warnings.size() < 20)
       d_.stats.warnings.push_back(budget_.stall_warning());
-    if (tab_.embedded && d_.stats.regularized_evaluations > 0 && o_.rtol < 5e-10 &&
+    // the tightest tolerance each method kept through the double four-bar's singular passages
+    // (docs/performance.md): dopri5 5e-10; erk6 and erk8 1e-8 (erk8 at rtol 1e-9 with atol
+    // 5e-10, and both at 1e-10, could not step over some passages: errors 1e-4 to 2e-2)
+    const double floor = tab_.order > 5 ? 1e-8 : 5e-10;
+    if (tab_.embedded && d_.stats.regularized_evaluations > 0 && o_.rtol < floor &&
         d_.stats.warnings.size() < 20)
       d_.stats.warnings.push_back(
-          "rtol " + fmt(o_.rtol) +
-          " is below what dopri5 reaches next to singular configurations "
+          "rtol " + fmt(o_.rtol) + " is below what " + to_string(o_.integrator) +
+          " reaches next to singular configurations "
           "(the augmented Lagrangian's accelerations are accurate to ~1e-8 there): expect the "
-          "error of rtol ~5e-10; use rk4 with a small step for more");
+          "error of rtol ~" +
+          fmt(floor) + " or worse; use rk4 with a small step for more");
   }
 
  private:
@@ -154,7 +205,7 @@ class RkDriver {
   int n_;
   bool project_ = true;
   double last_stepped_over_ = -std::numeric_limits<double>::infinity();
-  std::array<VectorXd, 7> k_;
+  std::array<VectorXd, kMaxStages> k_;
   VectorXd k_start_, k_next_;  // rates at the start of the next step (at the end of the last one)
   bool have_start_ = false;
   VectorXd q0_, q1_, y_stage_, err_;
@@ -254,7 +305,8 @@ class RkDriver {
         return;
       }
       const double factor =
-          err > 0 ? 0.9 * std::pow(err, -1.0 / (tab_.order)) : 5.0;  // elementary controller
+          err > 0 ? 0.9 * std::pow(err, -1.0 / (std::min(tab_.order, tab_.embedded_order) + 1))
+                  : 5.0;  // elementary controller
       // Next to a singular instant the accelerations are accurate to ~1e-8 relative only (the
       // augmented Lagrangian's floor), so a step that straddles the instant can show an error
       // estimate of a few tolerances whatever its length (seen: ~3 from h = 2e-3 to 1e-2 s at
@@ -364,8 +416,7 @@ class RkDriver {
 
 void run_explicit_rk(const Model& m, ForwardData& d, const State& s0, const ForwardOptions& o,
                      Recorder& rec) {
-  RkDriver driver(m, d, o,
-                  o.integrator == Integrator::dopri5 ? dormand_prince_54() : classical_rk4());
+  RkDriver driver(m, d, o, tableau(o.integrator));
   driver.run(s0, rec);
 }
 

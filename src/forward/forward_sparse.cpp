@@ -29,18 +29,20 @@ void ForwardData::init_sparse() {
 bool uses_sparse(const Model& m, const ForwardOptions& o) {
   const bool can = o.formulation == Formulation::augmented_lagrangian &&
                    (o.integrator == Integrator::rk4 || o.integrator == Integrator::dopri5 ||
+                    o.integrator == Integrator::erk6 || o.integrator == Integrator::erk8 ||
                     o.integrator == Integrator::baumgarte);
   switch (o.linear_algebra) {
     case LinearAlgebra::dense:
       return false;
     case LinearAlgebra::sparse:
       if (!can)
-        throw Error(std::string("forward dynamics: linear_algebra sparse needs the augmented "
-                                "Lagrangian formulation and rk4, dopri5 or baumgarte (got ") +
-                        to_string(o.formulation) + ", " + to_string(o.integrator) +
-                        "): CVODE's Newton matrix, the Lagrange and the null-space "
-                        "formulations are dense",
-                    "linear_algebra");
+        throw Error(
+            std::string("forward dynamics: linear_algebra sparse needs the augmented "
+                        "Lagrangian formulation and rk4, dopri5, erk6, erk8 or baumgarte (got ") +
+                to_string(o.formulation) + ", " + to_string(o.integrator) +
+                "): CVODE's Newton matrix, the Lagrange and the null-space "
+                "formulations are dense",
+            "linear_algebra");
       return true;
     case LinearAlgebra::automatic:
       return can && m.n1 + m.m1 >= kSparseCrossover;

@@ -278,11 +278,11 @@ void read_tables(Reader& r, const YAML::Node& node) {
 void read_run(const Reader& r, const YAML::Node& node, RunSettings& run,
               std::vector<std::pair<std::string, Location>>& elements) {
   if (!node.IsDefined() || node.IsNull()) return;
-  r.check_keys(
-      node,
-      {"solve", "t0", "duration", "samples", "tolerance", "integrator", "formulation", "rtol",
-       "atol", "step", "outputs", "max_steps", "max_seconds", "max_memory", "linear_algebra"},
-      "run");
+  r.check_keys(node,
+               {"solve", "t0", "duration", "samples", "tolerance", "integrator", "formulation",
+                "rtol", "atol", "step", "outputs", "max_steps", "max_seconds", "max_memory",
+                "linear_algebra", "accuracy"},
+               "run");
   // where each run key is written: errors found when the run's options are checked against the
   // model (check_scene_options) are reported there
   for (const auto& [key, value] : r.entries(node, "run"))
@@ -334,6 +334,8 @@ void read_run(const Reader& r, const YAML::Node& node, RunSettings& run,
                                          {"cvode_adams", Integrator::cvode_adams},
                                          {"rk4", Integrator::rk4},
                                          {"dopri5", Integrator::dopri5},
+                                         {"erk6", Integrator::erk6},
+                                         {"erk8", Integrator::erk8},
                                          {"baumgarte", Integrator::baumgarte}});
   if (node["formulation"].IsDefined())
     run.formulation =
@@ -346,6 +348,7 @@ void read_run(const Reader& r, const YAML::Node& node, RunSettings& run,
                                                {{"automatic", LinearAlgebra::automatic},
                                                 {"dense", LinearAlgebra::dense},
                                                 {"sparse", LinearAlgebra::sparse}});
+  read_accuracy(r, node, run);
   if (node["outputs"].IsDefined()) {
     run.csv = run.json = false;
     for (const auto& o : node["outputs"].IsSequence() ? node["outputs"] : YAML::Node()) {
@@ -428,6 +431,7 @@ Scene parse_scene(std::string_view yaml, const std::string& file_name,
     scene.law_labels.insert(scene.law_labels.end(), info.law_labels.begin(), info.law_labels.end());
     scene.expression_labels = std::move(info.labels);
     read_run(r, doc["run"], scene.run, scene.elements);
+    check_accuracy_overrides(run_overrides, scene.run.accuracy > 0);
     for (const RunOverride& o : run_overrides) apply_run_override(r, o, scene);
   } catch (const YAML::DeepRecursion& e) {  // yaml-cpp's depth guard (its message: "bad file")
     throw SceneError(Location{file_name, e.mark.line + 1, e.mark.column + 1},

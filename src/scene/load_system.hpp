@@ -4,6 +4,7 @@
 #include <map>
 #include <memory>
 #include <set>
+#include <span>
 #include <string>
 #include <utility>
 #include <vector>
@@ -57,6 +58,10 @@ void read_joint_friction(const Reader& r, const YAML::Node& joint, const std::st
                          bool revolute, System& out);
 
 // gears: and racks: (load_gears.cpp), added to `out`.
+// run.accuracy in a run: block (and what it replaces), and the command-line flags that cannot go
+// with it (load_accuracy.cpp)
+void read_accuracy(const Reader& r, const YAML::Node& node, RunSettings& run);
+void check_accuracy_overrides(std::span<const RunOverride> overrides, bool scene_accuracy);
 void read_gears(const Reader& r, const YAML::Node& gears, const YAML::Node& racks, System& out,
                 SystemInfo& info);
 

@@ -181,6 +181,7 @@ ForwardOptions forward_options(const Scene& scene, const Model& model) {
   o.rtol = scene.run.rtol;
   o.atol = scene.run.atol;
   o.step = scene.run.step;
+  o.accuracy = scene.run.accuracy;
   o.max_steps = scene.run.max_steps;
   o.max_seconds = scene.run.max_seconds;
   o.max_memory = scene.run.max_memory;
@@ -197,7 +198,7 @@ ForwardOptions forward_options(const Scene& scene, const Model& model) {
         }
       }
   add_controllers(scene, model, o);
-  return o;
+  return options_for_accuracy(model, o);
 }
 
 namespace {

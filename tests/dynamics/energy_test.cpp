@@ -17,8 +17,8 @@ using namespace mo2d;
 
 namespace {
 
-const Integrator kAll[] = {Integrator::rk4, Integrator::dopri5, Integrator::cvode_bdf,
-                           Integrator::baumgarte};
+const Integrator kAll[] = {Integrator::rk4,  Integrator::dopri5,    Integrator::erk6,
+                           Integrator::erk8, Integrator::cvode_bdf, Integrator::baumgarte};
 
 ForwardOptions run(Integrator integ, double t1, int samples = 41) {
   ForwardOptions o;

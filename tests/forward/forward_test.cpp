@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <numbers>
 
 #include "mo2d/mechanisms.hpp"
@@ -62,7 +63,9 @@ TEST(Forward, PendulumPeriodAtLargeAmplitudes) {
     ForwardOptions adams{.integrator = Integrator::cvode_adams, .rtol = 1e-13, .atol = 1e-13};
     ForwardOptions rk4{.integrator = Integrator::rk4, .step = 1e-3};
     ForwardOptions dopri5{.integrator = Integrator::dopri5, .rtol = 1e-12, .atol = 1e-12};
-    for (const auto& o : {bdf, adams, rk4, dopri5}) {
+    ForwardOptions erk6{.integrator = Integrator::erk6, .rtol = 1e-12, .atol = 1e-12};
+    ForwardOptions erk8{.integrator = Integrator::erk8, .rtol = 1e-12, .atol = 1e-12};
+    for (const auto& o : {bdf, adams, rk4, dopri5, erk6, erk8}) {
       const double t = bottom_passage(p, o);
       EXPECT_LE(std::abs(t - p.quarter_period) / p.quarter_period, 1e-9)
           << to_string(o.integrator) << " amplitude " << amplitude;
@@ -99,6 +102,36 @@ TEST(Forward, Dopri5ErrorFollowsTolerance) {
   EXPECT_LT(e6 / e8, 500.0);
   EXPECT_GT(e8 / e10, 20.0);
   EXPECT_LT(e8 / e10, 500.0);
+}
+
+// The order of ARKODE's Verner 6(5) and Fehlberg 8(7) tables in mo2d's loop, measured: over four
+// decades of tolerance the error and the number of steps N change together as error ~ N^-order
+// (the step length ~ 1/N). Pendulum at 2 rad, 21 quarter periods (the tip at the bottom, x = 0),
+// errors from ~1e-5 to ~1e-10, above round-off.
+TEST(Forward, HighOrderMethodsConvergeAtTheirOrder) {
+  const Pendulum p = released_pendulum(2.0);
+  const int ix = p.model.coordinate("link.P.x");
+  for (auto [integ, order] : {std::pair{Integrator::erk6, 6.0}, std::pair{Integrator::erk8, 8.0}}) {
+    auto run = [&](double tol) {
+      const Trajectory r = forward_dynamics(p.model, p.start,
+                                            {.t0 = 0,
+                                             .t1 = 21 * p.quarter_period,
+                                             .samples = 2,
+                                             .integrator = integ,
+                                             .rtol = tol,
+                                             .atol = tol});
+      return std::pair{std::abs(r.q0(1, ix)), static_cast<double>(r.stats.steps)};
+    };
+    const auto [e1, n1] = run(1e-6);
+    const auto [e2, n2] = run(1e-10);
+    const double measured = std::log(e1 / e2) / std::log(n2 / n1);
+    std::printf("%s: measured order %.2f (%.2e in %.0f steps, %.2e in %.0f)\n", to_string(integ),
+                measured, e1, n1, e2, n2);
+    EXPECT_GT(measured, order - 1)
+        << to_string(integ) << ": " << e1 << " in " << n1 << " steps, " << e2 << " in " << n2;
+    EXPECT_LT(measured, order + 1.5)
+        << to_string(integ) << ": " << e1 << " in " << n1 << " steps, " << e2 << " in " << n2;
+  }
 }
 
 // CVODE's error falls as its tolerance is tightened (BDF and Adams): the tip of the pendulum must
@@ -243,6 +276,28 @@ TEST(Forward, DoubleFourBarStaysOnThePhysicalBranch) {
   };
   EXPECT_LE(final_error({.integrator = Integrator::rk4, .step = 1e-3}), 1e-8);
   EXPECT_LE(final_error({.integrator = Integrator::rk4, .step = 1e-4}), 1e-6);
+  // the high-order methods down to tol 1e-8: on the branch, the error following the tolerance
+  // (error / tol measured: erk6 125 ... 467, erk8 52 ... 630; error per step control adds up
+  // over the steps)
+  for (Integrator i : {Integrator::erk6, Integrator::erk8})
+    for (double tol : {1e-4, 1e-5, 1e-6, 1e-7, 1e-8})
+      EXPECT_LE(final_error({.integrator = i, .rtol = tol, .atol = tol}), 1000 * tol)
+          << to_string(i) << " tol " << tol;
+  // below 1e-8 they cannot step over every passage (erk8 at 1e-10 ends 2e-2 away): not silently
+  {
+    ForwardOptions o{.t0 = 0,
+                     .t1 = 10,
+                     .samples = 11,
+                     .integrator = Integrator::erk8,
+                     .rtol = 1e-10,
+                     .atol = 1e-10};
+    const Trajectory r = forward_dynamics(m, s, o);
+    const bool said = std::any_of(r.stats.warnings.begin(), r.stats.warnings.end(), [](auto& w) {
+      return w.find("rtol 1e-10 is below what erk8 reaches next to singular configurations") !=
+             std::string::npos;
+    });
+    EXPECT_TRUE(said);
+  }
   // a branch flip ends near (1, 0), 0.9 m away; BDF at a loose tolerance must stay close
   EXPECT_LE(final_error({.integrator = Integrator::cvode_bdf, .rtol = 1e-8, .atol = 1e-8}), 1e-3);
 }
@@ -276,7 +331,20 @@ TEST(Forward, SingularInstantsAreSteppedOver) {
         .samples = 11,
         .integrator = Integrator::dopri5,
         .rtol = 3e-9,
-        .atol = 3e-9}}) {
+        .atol = 3e-9},
+        // the high-order methods, with an output time next to a singular instant too
+        ForwardOptions{.t0 = 0,
+        .t1 = 10,
+        .samples = 101,
+        .integrator = Integrator::erk6,
+        .rtol = 1e-8,
+        .atol = 1e-8},
+        ForwardOptions{.t0 = 0,
+        .t1 = 10,
+        .samples = 101,
+        .integrator = Integrator::erk8,
+        .rtol = 1e-8,
+        .atol = 1e-8}}) {
     const Trajectory r = forward_dynamics(m, s, o);
     const int k = static_cast<int>(r.time.size()) - 1;
     // rk4 at 4e-3: 3.3e-7; dopri5: ~370 x tol (3.7e-7 at 1e-9, 1.1e-6 at 3e-9)

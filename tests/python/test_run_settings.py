@@ -71,6 +71,8 @@ def test_settings_replace_the_scenes(scene_path):
      ["--duration", "L / 2", "--integrator", "cvode_adams", "--rtol", "1e-06", "--atol", "1e-09"]),
     (dict(t0=1, duration=0.3, formulation="lagrange", max_steps=100000),
      ["--t0", "1", "--duration", "0.3", "--formulation", "lagrange", "--max-steps", "100000"]),
+    (dict(duration=0.5, samples=11, accuracy=1e-6),
+     ["--duration", "0.5", "--samples", "11", "--accuracy", "1e-06"]),
 ])
 def test_forward_with_settings_is_the_command_line(scene_path, mo2d_cli, tmp_path, settings,
                                                    flags):

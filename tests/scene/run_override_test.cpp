@@ -75,7 +75,7 @@ TEST(RunOverride, BadValuesAreRefusedAtTheFlag) {
   EXPECT_EQ(error_of({{"rtol", "0"}}), "--rtol: run.rtol: must be > 0");
   EXPECT_EQ(error_of({{"integrator", "rk5"}}),
             "--integrator: run.integrator: unknown value 'rk5' (did you mean 'rk4'?); expected "
-            "one of: cvode_bdf, cvode_adams, rk4, dopri5, baumgarte");
+            "one of: cvode_bdf, cvode_adams, rk4, dopri5, erk6, erk8, baumgarte");
   EXPECT_NE(error_of({{"duration", "2 * TT"}})
                 .find("--duration: run.duration: in expression "
                       "'2 * TT': undefined name 'TT'"),
@@ -105,6 +105,47 @@ TEST(RunOverride, LaterChecksNameTheFlag) {
   } catch (const SceneError& e) {
     EXPECT_EQ(e.where().file, "p.yaml");
     EXPECT_GT(e.where().line, 0);
+  }
+}
+
+// run.accuracy picks the integrator and its tolerances: with one of them in the same place it is
+// refused; a later setting (the command line over the scene) replaces the earlier one.
+TEST(RunOverride, AccuracyAndMethodSettings) {
+  EXPECT_EQ(with({{"accuracy", "1e-6"}}).run.accuracy, 1e-6);  // over the scene's rk4
+  EXPECT_EQ(with({}).run.accuracy, 0);
+  EXPECT_EQ(error_of({{"accuracy", "1e-6"}, {"integrator", "dopri5"}}),
+            "--accuracy: run.accuracy: chooses the integrator and its tolerances; remove "
+            "--integrator (or --accuracy)");
+  EXPECT_NE(error_of({{"accuracy", "0"}})
+                .find("--accuracy: run.accuracy: must be in [1e-09, 0.01] (the error of the "
+                      "positions relative to the mechanism's size)"),
+            std::string::npos);
+  EXPECT_NE(error_of({{"accuracy", "1"}}).find("must be in [1e-09, 0.01]"), std::string::npos);
+  std::string both = kScene;
+  both.replace(both.find("  step: 0.01"), 12, "  accuracy: 1e-6");
+  try {
+    parse_scene(both, "p.yaml");
+    ADD_FAILURE() << "accuracy with integrator accepted";
+  } catch (const SceneError& e) {
+    EXPECT_EQ(std::string(e.what()),
+              "p.yaml:25:13: run.accuracy: chooses the integrator and its tolerances; remove "
+              "run.integrator (or run.accuracy)");
+  }
+  // the scene's accuracy, replaced by a method from the command line
+  std::string asked = kScene;
+  asked.replace(asked.find("  integrator: rk4\n  step: 0.01"), 30, "  accuracy: 1e-6");
+  EXPECT_EQ(parse_scene(asked, "p.yaml").run.accuracy, 1e-6);
+  const Scene replaced =
+      parse_scene(asked, "p.yaml", {}, std::vector<RunOverride>{{"integrator", "dopri5"}});
+  EXPECT_EQ(replaced.run.accuracy, 0);
+  EXPECT_EQ(replaced.run.integrator, Integrator::dopri5);
+  try {  // a step alone would apply to the default integrator, not to the scene's choice
+    parse_scene(asked, "p.yaml", {}, std::vector<RunOverride>{{"step", "1e-3"}});
+    ADD_FAILURE() << "--step over run.accuracy accepted";
+  } catch (const SceneError& e) {
+    EXPECT_EQ(std::string(e.what()),
+              "--step: the scene asks for run.accuracy, which chooses the integrator: give "
+              "--integrator with --step (or --accuracy)");
   }
 }
 
