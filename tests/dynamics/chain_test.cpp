@@ -369,7 +369,7 @@ TEST(Chain, LineOfCentresTurningTooFarIsAnError) {
   EXPECT_NO_THROW(chain_value(m, m.chains[0], m.q0, q1, 0.0));
   m.chains[0].beta0 += 0.9 * detail::kChainMaxTurn;  // still within: no error
   EXPECT_NO_THROW(chain_value(m, m.chains[0], m.q0, q1, 0.0));
-  m.chains[0].beta0 += 0.2 * detail::kChainMaxTurn;
+  m.chains[0].beta0 += 0.35;  // 3.05 rad in all: past kChainMaxTurn, short of pi
   try {
     chain_value(m, m.chains[0], m.q0, q1, 1.25);
     ADD_FAILURE() << "no error past kChainMaxTurn";
