@@ -91,3 +91,4 @@ TEST(ChainScene, BadInputAtItsLine) {
 }
 
 }  // namespace
+}  // namespace mo2d
