@@ -3,6 +3,7 @@
 // the peak of every effort, the range of every slider, the traced paths. Internal to mo2d_render.
 #include <cairo.h>
 
+#include <array>
 #include <utility>
 #include <vector>
 
@@ -34,8 +35,8 @@ struct FramePlan {
   // from a to b) and tensions; the run's peak tension of each chain (chains.cpp)
   struct ChainAt {
     Vec2 ca{0, 0}, cb{0, 0};
-    std::pair<Vec2, Vec2> span[2]{};
-    double tension[2]{0, 0};
+    std::array<std::pair<Vec2, Vec2>, 2> span{};
+    std::array<double, 2> tension{0, 0};
   };
   std::vector<std::vector<ChainAt>> chains{};  // [sample][chain]
   std::vector<double> chain_peak{};
