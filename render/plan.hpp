@@ -3,6 +3,7 @@
 // the peak of every effort, the range of every slider, the traced paths. Internal to mo2d_render.
 #include <cairo.h>
 
+#include <array>
 #include <utility>
 #include <vector>
 
@@ -30,6 +31,15 @@ struct FramePlan {
   };
   std::vector<std::vector<LoadAt>> forces{}, torques{};  // [sample][load]
   std::vector<double> force_peak{}, torque_peak{};
+  // chains: per sample, each chain's sprocket centres, its spans' tangent points (upper, lower;
+  // from a to b) and tensions; the run's peak tension of each chain (chains.cpp)
+  struct ChainAt {
+    Vec2 ca{0, 0}, cb{0, 0};
+    std::array<std::pair<Vec2, Vec2>, 2> span{};
+    std::array<double, 2> tension{0, 0};
+  };
+  std::vector<std::vector<ChainAt>> chains{};  // [sample][chain]
+  std::vector<double> chain_peak{};
   int time_decimals = 2;
 };
 
@@ -48,5 +58,9 @@ void check_sample(const Motion& motion, int sample);
 // drawing at sample k (after the effort symbols).
 void plan_loads(FramePlan& p);
 void draw_loads(cairo_t* cr, const FramePlan& p, int k);
+// The chains of every sample (FramePlan::chains; chains.cpp) and their drawing at sample k (pitch
+// circles and spans, after the bodies).
+void plan_chains(FramePlan& p);
+void draw_chains(cairo_t* cr, const FramePlan& p, int k);
 
 }  // namespace mo2d::detail

@@ -116,6 +116,7 @@ FramePlan make_plan(const Model& model, const Motion& motion, const FrameOptions
   for (const std::string& label : options.traces)
     p.trace_points.push_back(trace_point(model, label));
   plan_loads(p);
+  plan_chains(p);
 
   // effort peaks (non-finite efforts are not drawn)
   p.peak.assign(model.n_inputs(), 0.0);
