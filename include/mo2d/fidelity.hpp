@@ -32,7 +32,7 @@ struct RunTimeScale {
 
 struct CompliantElement {
   std::string name;
-  std::string kind;          // "spring", "torsional spring"
+  std::string kind;          // "spring", "torsional spring", "chain span" (+ " (taut)")
   bool reduced = false;      // already reduce: constraint
   double stiffness = 0;      // local, N/m or N m/rad
   double damping = 0;        // local, N s/m or N m s/rad

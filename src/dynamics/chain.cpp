@@ -84,6 +84,12 @@ S span_damping_power(const ChainLoad& c, const Span<S>& s, double rest) {
 
 }  // namespace
 
+std::array<double, 2> chain_span_rates(const Model& m, const ChainLoad& c, const Vr& q0,
+                                       const Vr& q1, double t) {
+  const Spans<double> sp = chain_spans(c, chain_input(m, c, q0, q1), t);
+  return {sp.upper.rate, sp.lower.rate};
+}
+
 void add_chain_forces(const Model& m, const Vr& q0, const Vr& q1, double t, double* local) {
   for (const ChainLoad& c : m.chains) {
     const ChainForce<double> f = chain_force(c, chain_spans(c, chain_input(m, c, q0, q1), t));

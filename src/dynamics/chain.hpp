@@ -33,6 +33,7 @@
 //
 // Written once for double and Jet (the exact directional derivatives of
 // dynamics/derivatives.cpp evaluate the same code on Jets).
+#include <array>
 #include <cmath>
 #include <numbers>
 #include <string>
@@ -149,6 +150,10 @@ double chain_potential(const Model& m, const ChainVec& q0);
 double chain_damping_power(const Model& m, const ChainVec& q0, const ChainVec& q1);
 double chain_damping_power_derivative(const Model& m, const ChainVec& q0, const ChainVec& q1,
                                       const ChainVec& dq0, const ChainVec& dq1);
+// The rates of the upper and lower spans' material lengths at (q0, q1), linear in q1 (the
+// fidelity report takes their gradient over q1).
+std::array<double, 2> chain_span_rates(const Model& m, const ChainLoad& c, const ChainVec& q0,
+                                       const ChainVec& q1, double t);
 // Sets beta0, the offsets (l = L at m.q0) and the default rest lengths (NaN: the initial L).
 void init_chain(const Model& m, ChainLoad& c);
 

@@ -11,6 +11,7 @@
 #include <limits>
 #include <numbers>
 
+#include "dynamics/chain.hpp"
 #include "mo2d/dynamics.hpp"
 #include "mo2d/kinematics.hpp"
 
@@ -178,6 +179,39 @@ CompliantElement torsional_element(const Model& m, const TorsionalLoad& l, const
   return c;
 }
 
+// A chain's two spans (docs/reduction.md, "Chain and belt drives"): each span's material length
+// has a rate linear in q1, dl/dt = t . (v_b - v_a) +- (r_a w_a - r_b w_b), and the stiffness k
+// (a unilateral span only while it is taut).
+void add_chain_spans(const Model& m, const ChainLoad& c, const Allowed& a, const VectorXd& q0,
+                     double t, std::vector<CompliantElement>& out) {
+  VectorXd gu(m.n1), gl(m.n1), e = VectorXd::Zero(m.n1);
+  for (int j = 0; j < m.n1; ++j) {
+    e[j] = 1;
+    const std::array<double, 2> r = detail::chain_span_rates(m, c, q0, e, t);
+    gu[j] = r[0];
+    gl[j] = r[1];
+    e[j] = 0;
+  }
+  for (int span = 0; span < 2; ++span) {
+    CompliantElement el;
+    el.name = c.name + (span == 0 ? ".upper" : ".lower");
+    el.kind = c.fidelity == ChainFidelity::unilateral ? "chain span (taut)" : "chain span";
+    el.stiffness = c.stiffness;
+    el.damping = c.damping;
+    el.inertia = reflected_inertia(a, span == 0 ? gu : gl);
+    out.push_back(std::move(el));
+  }
+}
+
+// A chain's verdict names what exists for it: no `reduce: constraint` (the inextensible chain is
+// not written yet), a gear pair where the centres are fixed.
+void chain_verdict(CompliantElement& c) {
+  const std::string key = "reduce: constraint";
+  const auto at = c.verdict.find(key);
+  if (at != std::string::npos)
+    c.verdict.replace(at, key.size(), "a gear pair of ratio r_a/r_b if the centres are fixed");
+}
+
 }  // namespace
 
 std::vector<CompliantElement> fidelity_report(const Model& m, const VectorXd& q0,
@@ -194,7 +228,11 @@ std::vector<CompliantElement> fidelity_report(const Model& m, const VectorXd& q0
     c.reduced = true;
     out.push_back(std::move(c));
   }
-  for (CompliantElement& c : out) complete(c, scale);
+  for (const ChainLoad& c : m.chains) add_chain_spans(m, c, a, q0, t, out);
+  for (CompliantElement& c : out) {
+    complete(c, scale);
+    if (c.kind.starts_with("chain")) chain_verdict(c);
+  }
   return out;
 }
 
