@@ -1,6 +1,5 @@
 // loads: chains: of a system block -> System::add_chain (keys: docs/scene-format.md, "Chain and
 // belt drives"; the geometry and forces: src/dynamics/chain.hpp).
-#include <algorithm>
 
 #include "load_system.hpp"
 #include "model/suggest.hpp"
@@ -8,17 +7,6 @@
 namespace mo2d::scene_detail {
 
 namespace {
-
-std::string sprocket_body(const Reader& r, const YAML::Node& map, const char* key,
-                          const std::string& what, const SystemInfo& info) {
-  const YAML::Node n = r.required(map, key, what);
-  std::string name = r.string(n, what + "." + key);
-  if (name == "ground") return name;
-  if (std::find(info.bodies.begin(), info.bodies.end(), name) == info.bodies.end())
-    r.fail(n,
-           what + "." + key + ": undefined body '" + name + "'" + did_you_mean(name, info.bodies));
-  return name;
-}
 
 double positive(const Reader& r, const YAML::Node& map, const char* key, const std::string& what) {
   const YAML::Node n = r.required(map, key, what);
@@ -55,10 +43,10 @@ void read_chains(const Reader& r, const YAML::Node& chains, System& out, SystemI
                  what);
     ChainDef c;
     c.name = s;
-    c.body_a = sprocket_body(r, value, "body_a", what, info);
+    c.body_a = body_of(r, value, "body_a", what, info, true);
     c.centre_a = r.vec2(r.required(value, "centre_a", what), what + ".centre_a");
     c.radius_a = positive(r, value, "radius_a", what);
-    c.body_b = sprocket_body(r, value, "body_b", what, info);
+    c.body_b = body_of(r, value, "body_b", what, info, true);
     c.centre_b = r.vec2(r.required(value, "centre_b", what), what + ".centre_b");
     c.radius_b = positive(r, value, "radius_b", what);
     c.stiffness = positive(r, value, "stiffness", what);

@@ -17,6 +17,15 @@ void check_element_name(const Reader& r, const YAML::Node& key, const std::strin
                     "'ground'");
 }
 
+double non_zero(const Reader& r, const YAML::Node& map, const char* key, const std::string& what) {
+  const YAML::Node n = r.required(map, key, what);
+  const double v = r.number(n, what + "." + key);
+  if (v == 0) r.fail(n, what + "." + key + ": must be non-zero");
+  return v;
+}
+
+}  // namespace
+
 std::string body_of(const Reader& r, const YAML::Node& map, const char* key,
                     const std::string& what, const SystemInfo& info, bool ground_allowed) {
   const YAML::Node n = r.required(map, key, what);
@@ -27,15 +36,6 @@ std::string body_of(const Reader& r, const YAML::Node& map, const char* key,
            what + "." + key + ": undefined body '" + name + "'" + did_you_mean(name, info.bodies));
   return name;
 }
-
-double non_zero(const Reader& r, const YAML::Node& map, const char* key, const std::string& what) {
-  const YAML::Node n = r.required(map, key, what);
-  const double v = r.number(n, what + "." + key);
-  if (v == 0) r.fail(n, what + "." + key + ": must be non-zero");
-  return v;
-}
-
-}  // namespace
 
 // gears: {name: {body, driver, carrier (default ground), ratio}}
 // racks: {name: {slide, pinion, radius}}

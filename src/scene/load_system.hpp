@@ -66,6 +66,10 @@ void read_gears(const Reader& r, const YAML::Node& gears, const YAML::Node& rack
                 SystemInfo& info);
 
 // loads: chains: (load_chains.cpp), added to `out`.
+// The body named at map[key] (a gear's, a rack's or a chain's): a body of the system, or
+// "ground" where ground_allowed; an error at the key's line otherwise, with a suggestion.
+std::string body_of(const Reader& r, const YAML::Node& map, const char* key,
+                    const std::string& what, const SystemInfo& info, bool ground_allowed);
 void read_chains(const Reader& r, const YAML::Node& chains, System& out, SystemInfo& info);
 
 // Fill `out` from `block`; root: gravity is allowed in loads.
