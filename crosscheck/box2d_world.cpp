@@ -57,41 +57,6 @@ b2Vec2 local_axis(const Model& m, const Constraint::Slider& c) {
 
 [[noreturn]] void refuse(const std::string& what, const std::string& element);
 
-// The revolute joint of w from body `from` (body 1, node_a) to body `to` (body 2); nullptr if none.
-b2Joint* revolute_between(const Box2DWorld& w, int from, int to) {
-  for (const JointMap& j : w.joints)
-    if (j.kind == JointKind::revolute && j.body1 == from && j.body2 == to) return j.joint;
-  return nullptr;
-}
-
-// A gear pair as b2GearJoint: coordinate1 + ratio coordinate2 = constant, each coordinate the
-// angle of a revolute joint's body B relative to its body A; with joint1 carrier -> j and
-// joint2 carrier -> k this is theta_j - theta_c - rho (theta_k - theta_c) = constant, so
-// ratio = -rho. Racks are not mapped.
-void add_gear_joint(const Model& m, Box2DWorld& w, const Constraint& c) {
-  const auto& g = c.as<Constraint::Gear>();
-  if (g.coord >= 0) refuse("rack '" + c.name + "' has no Box2D equivalent mapped yet", c.name);
-  int driver = -1;
-  for (const Constraint& k : m.constraints)
-    if (const auto* cd = std::get_if<Constraint::Coordinate>(&k.def); cd && cd->coord == g.phi)
-      for (auto [body, weight] : cd->angle_terms)
-        if (weight > 0) driver = body;
-  b2Joint* j1 = revolute_between(w, g.carrier, g.body);
-  b2Joint* j2 = driver >= 0 ? revolute_between(w, g.carrier, driver) : nullptr;
-  if (!j1 || !j2)
-    refuse("gear '" + c.name +
-               "': Box2D's gear joint needs a revolute joint from the carrier (node_a) to the "
-               "body and one to the driver",
-           c.name);
-  b2GearJointDef def;
-  def.joint1 = j1;
-  def.joint2 = j2;
-  def.bodyA = j1->GetBodyB();
-  def.bodyB = j2->GetBodyB();
-  def.ratio = static_cast<float>(-g.ratio);
-  w.world->CreateJoint(&def);
-}
-
 void refuse(const std::string& what, const std::string& element) {
   throw Error("Box2D cross-check: " + what, element);
 }
@@ -100,6 +65,28 @@ const Input* input_of(const Model& m, const std::string& joint, const std::strin
   for (const Input& in : m.inputs)
     if (in.joint == joint && in.label == joint + suffix) return &in;
   return nullptr;
+}
+
+// A revolute joint (body 1 -> body 2) into j; from the proxy of body 1 when `on_proxy`.
+void add_revolute_joint(const Model& m, Box2DWorld& w, const Constraint& c, bool motor,
+                        bool on_proxy, const CrosscheckOptions& options, JointMap& j) {
+  const auto& r = c.as<Constraint::Revolute>();
+  j.body1 = r.body1;
+  j.body2 = r.body2;
+  if (on_proxy) add_carrier_proxy(w, r.body1);
+  b2Body* A = on_proxy ? w.bodies[r.body1].proxy : body_of(w, r.body1);
+  b2Body* B = body_of(w, r.body2);
+  b2RevoluteJointDef def;
+  def.bodyA = A;
+  def.bodyB = B;
+  def.localAnchorA = local_anchor(m, w, r.a);
+  def.localAnchorB = local_anchor(m, w, r.b);
+  def.referenceAngle = B->GetAngle() - A->GetAngle();
+  j.kind = JointKind::revolute;
+  j.motor = motor;
+  def.enableMotor = motor;
+  def.maxMotorTorque = static_cast<float>(options.max_motor_torque);
+  j.joint = w.world->CreateJoint(&def);
 }
 
 }  // namespace
@@ -202,6 +189,8 @@ Box2DWorld build_box2d_world(const Model& m, const Eigen::VectorXd& q0, const Ei
     w.bodies.back().body = body;
   }
 
+  const std::vector<char> on_proxy = revolutes_on_proxy(m);
+  std::vector<int> gears;
   for (size_t ci = 0; ci < m.constraints.size(); ++ci) {
     const Constraint& c = m.constraints[ci];
     JointMap j;
@@ -217,28 +206,13 @@ Box2DWorld build_box2d_world(const Model& m, const Eigen::VectorXd& q0, const Ei
       case ConstraintKind::user_velocity:
         refuse("user velocity constraint '" + c.name + "' has no Box2D equivalent", c.name);
         break;
-      case ConstraintKind::gear:  // Box2D's gear joint couples the two shafts' revolute joints
-        add_gear_joint(m, w, c);
+      case ConstraintKind::gear:  // after the revolute joints it couples (box2d_gears.cpp)
+        gears.push_back(static_cast<int>(ci));
         continue;
-      case ConstraintKind::revolute: {
-        const auto& r = c.as<Constraint::Revolute>();
-        j.body1 = r.body1;
-        j.body2 = r.body2;
-        b2Body* A = body_of(w, r.body1);
-        b2Body* B = body_of(w, r.body2);
-        b2RevoluteJointDef def;
-        def.bodyA = A;
-        def.bodyB = B;
-        def.localAnchorA = local_anchor(m, w, r.a);
-        def.localAnchorB = local_anchor(m, w, r.b);
-        def.referenceAngle = B->GetAngle() - A->GetAngle();
-        j.kind = JointKind::revolute;
-        j.motor = motors && input_of(m, c.name, ".torque") != nullptr;
-        def.enableMotor = j.motor;
-        def.maxMotorTorque = static_cast<float>(options.max_motor_torque);
-        j.joint = w.world->CreateJoint(&def);
+      case ConstraintKind::revolute:
+        add_revolute_joint(m, w, c, motors && input_of(m, c.name, ".torque") != nullptr,
+                           on_proxy[ci] != 0, options, j);
         break;
-      }
       case ConstraintKind::prismatic:
       case ConstraintKind::slot: {
         const bool slot = c.kind() == ConstraintKind::slot;
@@ -291,6 +265,7 @@ Box2DWorld build_box2d_world(const Model& m, const Eigen::VectorXd& q0, const Ei
     }
     w.joints.push_back(j);
   }
+  for (int gi : gears) add_gear_joint(m, w, m.constraints[gi]);
   return w;
 }
 

@@ -23,6 +23,8 @@ struct BodyMap {
   double alpha = 0;         // geometry angle of node 1 seen from node 0 (0 for one node)
   bool rotates = false;     // has a rotation in mo2d (and in Box2D)
   bool oriented = false;    // has >= 2 nodes, so its angle is observable from q0
+  // A carrier of gear pairs: the second half of the body, welded to `body` (box2d_gears.cpp).
+  b2Body* proxy = nullptr;
 };
 
 enum class JointKind { revolute, prismatic, wheel };
@@ -72,5 +74,16 @@ void apply_loads(const Model& m, Box2DWorld& w, double t);
 Model with_inertia_floor(const Model& m, double fraction, std::vector<std::string>& notes);
 
 double wrap_angle(double a);
+
+// Gear pairs (box2d_gears.cpp). The driver k of a gear pair (-1: none found).
+int gear_driver(const Model& m, const Constraint::Gear& g);
+// Per constraint: 1 for the revolute joints that must start on their carrier's proxy, so that no
+// gear joint has both its joints on the same moving body (Box2D 2.4.1's gear joint loses the
+// carrier's share of the impulse then).
+std::vector<char> revolutes_on_proxy(const Model& m);
+// Split the carrier's Box2D body into two welded halves (idempotent).
+void add_carrier_proxy(Box2DWorld& w, int carrier);
+// The gear pair c as a b2GearJoint between its two revolute joints (created before).
+void add_gear_joint(const Model& m, Box2DWorld& w, const Constraint& c);
 
 }  // namespace mo2d::crosscheck_detail
