@@ -8,8 +8,8 @@ A fenced block is acted on by the braces after its language:
   ```text {expect}              each non-empty line must appear, as written, in the output of the
                                 block run just before (stdout and stderr together)
 Blocks without braces are prose. The folder's PATH starts with the folder of the mo2d executable
-(--bin), PYTHONPATH with the Python package of the build (--python), and MO2D_PREFIX names the
-build tree for find_package(mo2d) (--prefix), MO2D_SOURCE the source tree (mechanisms/ etc.).
+(--bin), PYTHONPATH with the Python package of the build (--python), and MO2D_BUILD names the
+build tree to install from (--prefix), MO2D_SOURCE the source tree (mechanisms/ etc.).
 
   run_tutorial.py --bin build --work /tmp/t01 docs/tutorials/01-first-linkage.md
 """
@@ -73,7 +73,7 @@ def main():
     if a.python:
         env["PYTHONPATH"] = os.path.abspath(a.python) + os.pathsep + env.get("PYTHONPATH", "")
     if a.prefix:
-        env["MO2D_PREFIX"] = os.path.abspath(a.prefix)
+        env["MO2D_BUILD"] = os.path.abspath(a.prefix)
     env["MO2D_SOURCE"] = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 
     last = None  # output of the last block run
