@@ -4,10 +4,11 @@
 A fenced block is acted on by the braces after its language:
   ```yaml {file=fourbar.yaml}   write the block to that file (any language)
   ```sh {run}                   run it with bash -euo pipefail; a non-zero exit fails the tutorial
-  ```python {run}               run it with python3
+  ```python {run}               run it with the Python that runs this script
   ```text {expect}              each non-empty line must appear, as written, in the output of the
                                 block run just before (stdout and stderr together)
-Blocks without braces are prose. The folder's PATH starts with the folder of the mo2d executable
+Blocks without braces are prose. A page with the line <!-- tutorial: python --> needs the Python
+package: without --python it is skipped (exit status 77). The folder's PATH starts with the folder of the mo2d executable
 (--bin), PYTHONPATH with the Python package of the build (--python), and MO2D_BUILD names the
 build tree to install from (--prefix), MO2D_SOURCE the source tree (mechanisms/ etc.).
 
@@ -46,7 +47,7 @@ def blocks(text):
 
 
 def run_block(lang, body, cwd, env, timeout):
-    cmd = ["bash", "-euo", "pipefail", "-c", body] if lang in ("sh", "bash") else ["python3", "-c", body]
+    cmd = ["bash", "-euo", "pipefail", "-c", body] if lang in ("sh", "bash") else [sys.executable, "-c", body]
     p = subprocess.run(cmd, cwd=cwd, env=env, capture_output=True, text=True, timeout=timeout)
     return p.returncode, p.stdout + p.stderr
 
@@ -63,7 +64,11 @@ def main():
 
     name = os.path.basename(a.tutorial)
     with open(a.tutorial, encoding="utf-8") as f:
-        todo = blocks(f.read())
+        text = f.read()
+    todo = blocks(text)
+    if "<!-- tutorial: python -->" in text and not a.python:
+        print(f"{name}: needs mo2d's Python package, not built here (MO2D_PYTHON=OFF): skipped")
+        sys.exit(77)
     if not any("run" in attrs for _, attrs, _, _ in todo):
         sys.exit(f"{name}: no block to run (a tutorial the tests cannot fail)")
     shutil.rmtree(a.work, ignore_errors=True)
