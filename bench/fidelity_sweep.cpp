@@ -8,6 +8,8 @@
 //   build/bench/mo2d_fidelity_plot docs/img/fidelity_sweep.csv docs/img/fidelity
 // --quick: the four-bar only, k = 1e4 and 1e5, one tolerance, 1 s; checks that the gear pair's
 // error falls with k (1/k) and the full model's stays at its tolerance (the ctest).
+#include "fidelity_sweep.hpp"
+
 #include <cmath>
 #include <cstdio>
 #include <exception>
@@ -15,8 +17,6 @@
 #include <map>
 #include <string>
 #include <vector>
-
-#include "fidelity_sweep.hpp"
 
 namespace {
 
@@ -99,34 +99,56 @@ struct Settings {
   int repetitions = 3;
 };
 
+Row make_row(const SceneCase& sc, const std::string& name, const Fidelity& f, const RunSpec& spec,
+             const RunResult& ref) {
+  Row row{sc.name, name, f.integrator, spec.k, spec.rtol, run_case(sc, f, spec), {}};
+  if (row.r.status == Status::ok && ref.status == Status::ok) {
+    const auto margin = filter_margin(sc.duration / (sc.samples - 1), sc.sigma);
+    double worst = 0;
+    for (std::size_t i = 0; i < sc.signals.size(); ++i)
+      worst =
+          std::max(worst, row.err.emplace_back(relative_error(row.r.slow[i], ref.slow[i], margin)));
+    row.err.push_back(worst);
+  }
+  std::printf("  %-22s rtol %.0e: %s", name.c_str(), spec.rtol, to_string(row.r.status));
+  if (!row.err.empty())
+    std::printf(", CPU %.4f s, %ld steps, error %.2e", row.r.cpu_median, row.r.steps,
+                row.err.back());
+  std::printf("\n");
+  return row;
+}
+
+// The reference at k: the full model (the scene's first fidelity) at rtol 1e-10; its check, the
+// same at rtol 1e-9 (a row "reference check": the reference's own error is below it).
 std::vector<Row> sweep_scene(const SceneCase& sc, const Settings& set) {
   std::vector<Row> rows;
   for (double k : set.ks) {
-    const RunSpec ref_spec{.k = k, .rtol = 1e-10, .atol = 1e-12, .integrator = "cvode_bdf",
-                           .repetitions = 1, .max_steps = 2000000, .max_seconds = 120};
+    RunSpec ref_spec{.k = k,
+                     .rtol = 1e-10,
+                     .atol = 1e-12,
+                     .integrator = "cvode_bdf",
+                     .repetitions = 1,
+                     .max_steps = 2000000,
+                     .max_seconds = 120};
     const RunResult ref = run_case(sc, sc.fidelities.front(), ref_spec);
-    std::printf("%s k = %.0e reference: %s, CPU %.3f s\n", sc.name.c_str(), k, to_string(ref.status),
-                ref.cpu_median);
+    std::printf("%s k = %.0e reference: %s, CPU %.3f s\n", sc.name.c_str(), k,
+                to_string(ref.status), ref.cpu_median);
+    if (ref.status != Status::ok) std::printf("    (%s)\n", ref.message.c_str());
+    ref_spec.rtol = 1e-9;
+    ref_spec.atol = 1e-11;
+    rows.push_back(make_row(sc, "reference check", sc.fidelities.front(), ref_spec, ref));
     for (const Fidelity& f : sc.fidelities)
       for (double rtol : set.rtols) {
-        const RunSpec spec{.k = k, .rtol = rtol, .atol = 1e-2 * rtol, .integrator = f.integrator,
+        const RunSpec spec{.k = k,
+                           .rtol = rtol,
+                           .atol = 1e-2 * rtol,
+                           .integrator = f.integrator,
                            .repetitions = set.repetitions};
-        Row row{sc.name, f.name, f.integrator, k, rtol, run_case(sc, f, spec), {}};
-        if (row.r.status == Status::ok && ref.status == Status::ok) {
-          const auto margin = filter_margin(sc.duration / (sc.samples - 1), sc.sigma);
-          double worst = 0;
-          for (std::size_t i = 0; i < sc.signals.size(); ++i)
-            worst = std::max(worst, row.err.emplace_back(relative_error(row.r.slow[i], ref.slow[i], margin)));
-          row.err.push_back(worst);
-        }
-        std::printf("  %-22s rtol %.0e: %s", f.name.c_str(), rtol, to_string(row.r.status));
-        if (!row.err.empty())
-          std::printf(", CPU %.4f s, %ld steps, error %.2e", row.r.cpu_median, row.r.steps,
-                      row.err.back());
-        std::printf("\n");
-        if (row.r.status == Status::not_available && rtol == set.rtols.front())
-          std::printf("    (%s)\n", row.r.message.c_str());
-        rows.push_back(std::move(row));
+        rows.push_back(make_row(sc, f.name, f, spec, ref));
+        const Status st = rows.back().r.status;
+        if ((st == Status::not_available && rtol == set.rtols.front()) || st == Status::failed ||
+            st == Status::budget_exceeded)
+          std::printf("    (%s)\n", rows.back().r.message.c_str());
       }
   }
   return rows;
@@ -157,39 +179,50 @@ void write_csv(const std::vector<Row>& rows, const std::string& path) {
 std::string cell(const Row& r) {
   char b[96];
   if (r.r.status != Status::ok || r.err.empty()) return to_string(r.r.status);
-  std::snprintf(b, sizeof b, "%.3g ms, %.1e", 1e3 * r.r.cpu_median, r.err.back());
+  const double ms = 1e3 * r.r.cpu_median;
+  std::snprintf(b, sizeof b, ms >= 100 ? "%.0f ms, %.1e" : "%.3g ms, %.1e", ms, r.err.back());
   return b;
 }
 
-// One table per scene: a row per fidelity and tolerance, a column per k ("CPU, error").
+void table_head(std::ofstream& out, const std::string& scene, const Settings& set) {
+  out << "\n**" << scene << "** (CPU of the solve, median; error of the slow signals)\n\n";
+  out << "| fidelity | rtol |";
+  for (double k : set.ks) out << " k = 1e" << std::lround(std::log10(k)) << " N/m |";
+  out << "\n|---|---|";
+  for (std::size_t j = 0; j < set.ks.size(); ++j) out << "---|";
+  out << "\n";
+}
+
+// One table per scene: a row per fidelity and tolerance, a column per k ("CPU, error"); the
+// fidelities not available in this build listed below it.
 void write_markdown(const std::vector<Row>& rows, const Settings& set, const std::string& path) {
   std::ofstream out(path);
-  std::string scene;
-  for (std::size_t i = 0; i < rows.size(); ++i) {
-    const Row& r = rows[i];
+  std::string scene, missing;
+  auto flush_missing = [&] {
+    if (!missing.empty()) out << "\nNot available in this build: " << missing << ".\n";
+    missing.clear();
+  };
+  for (const Row& r : rows) {
     if (r.k != set.ks.front()) continue;
     if (r.scene != scene) {
-      scene = r.scene;
-      out << "\n**" << scene << "** (CPU of the solve, median; error of the slow signals)\n\n";
-      out << "| fidelity | rtol |";
-      for (double k : set.ks) out << " k = 1e" << std::lround(std::log10(k)) << " N/m |";
-      out << "\n|---|---|";
-      for (std::size_t j = 0; j < set.ks.size(); ++j) out << "---|";
-      out << "\n";
+      flush_missing();
+      table_head(out, scene = r.scene, set);
+    }
+    if (r.r.status == Status::not_available) {
+      if (r.rtol == set.rtols.front()) missing += (missing.empty() ? "" : ", ") + r.fidelity;
+      continue;
     }
     char t[16];
     std::snprintf(t, sizeof t, "%.0e", r.rtol);
     out << "| " << r.fidelity << " | " << t << " |";
     for (const Row& q : rows)
-      if (q.scene == r.scene && q.fidelity == r.fidelity && q.rtol == r.rtol) out << " " << cell(q) << " |";
+      if (q.scene == r.scene && q.fidelity == r.fidelity && q.rtol == r.rtol)
+        out << " " << cell(q) << " |";
     out << "\n";
   }
+  flush_missing();
   std::printf("wrote %s\n", path.c_str());
 }
-
-}  // namespace
-
-namespace {
 
 // The ctest's checks on the quick sweep (the four-bar at k = 1e4 and 1e5): the CSV's header, the
 // gear pair's error falling with k (the rigid chain is the k -> infinity limit: error ~ 1/k) and
@@ -227,13 +260,18 @@ int main(int argc, char** argv) {
   Settings set;
   for (int i = 1; i < argc; ++i) {
     const std::string a = argv[i];
-    if (a == "--quick") quick = true;
-    else if (a == "--out" && i + 1 < argc) out = argv[++i];
-    else if (a == "--mechanisms" && i + 1 < argc) mechanisms = argv[++i];
-    else if (a == "--repetitions" && i + 1 < argc) set.repetitions = std::stoi(argv[++i]);
+    if (a == "--quick")
+      quick = true;
+    else if (a == "--out" && i + 1 < argc)
+      out = argv[++i];
+    else if (a == "--mechanisms" && i + 1 < argc)
+      mechanisms = argv[++i];
+    else if (a == "--repetitions" && i + 1 < argc)
+      set.repetitions = std::stoi(argv[++i]);
     else {
-      std::fprintf(stderr, "usage: mo2d_fidelity_sweep [--quick] [--out DIR] [--mechanisms DIR] "
-                           "[--repetitions N]\n");
+      std::fprintf(stderr,
+                   "usage: mo2d_fidelity_sweep [--quick] [--out DIR] [--mechanisms DIR] "
+                   "[--repetitions N]\n");
       return 2;
     }
   }

@@ -33,9 +33,9 @@ struct Signal {
 };
 
 struct Fidelity {
-  std::string name{};        // "unilateral (BDF)"
+  std::string name{};         // "unilateral (BDF)"
   std::vector<Edit> edits{};  // on the scene's YAML
-  std::string integrator{};  // cvode_bdf, dopri5, ...
+  std::string integrator{};   // cvode_bdf, dopri5, ...
   // a signal of the same name replacing the scene's (e.g. the chain tension of a gear model)
   std::vector<Signal> signals{};
   bool optional = false;  // refused by the scene loader: "not available in this build", skipped
@@ -47,18 +47,18 @@ struct SceneCase {
   std::vector<std::string> parameters{};  // "name=value" for every run (scenario, ...)
   double duration = 1;
   int samples = 101;
-  double sigma = 0.1;                // s, standard deviation of the Gaussian low-pass filter
-  std::vector<Signal> signals{};     // the slow signals
+  double sigma = 0.1;             // s, standard deviation of the Gaussian low-pass filter
+  std::vector<Signal> signals{};  // the slow signals
   std::vector<Fidelity> fidelities{};
 };
 
 struct RunSpec {
-  double k = 1e5;             // chain stiffness, N/m (parameter k_chain)
+  double k = 1e5;  // chain stiffness, N/m (parameter k_chain)
   double rtol = 1e-6, atol = 1e-8;
   std::string integrator{};
   int repetitions = 3;
-  int max_steps = 200000;     // budget of one run
-  double max_seconds = 30;    // wall-clock budget of one run
+  int max_steps = 200000;   // budget of one run
+  double max_seconds = 30;  // wall-clock budget of one run
 };
 
 enum class Status { ok, budget_exceeded, not_available, failed };
@@ -66,7 +66,7 @@ const char* to_string(Status s);
 
 struct RunResult {
   Status status = Status::ok;
-  std::string message{};         // the reason when not ok
+  std::string message{};               // the reason when not ok
   double cpu_median = 0, cpu_min = 0;  // s, of the solve
   long steps = 0;
   std::vector<Eigen::VectorXd> slow{};  // filtered slow signals, one per SceneCase::signals

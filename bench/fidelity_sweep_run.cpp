@@ -17,10 +17,14 @@ namespace mo2d::sweep {
 
 const char* to_string(Status s) {
   switch (s) {
-    case Status::ok: return "ok";
-    case Status::budget_exceeded: return "budget exceeded";
-    case Status::not_available: return "not available in this build";
-    case Status::failed: return "failed";
+    case Status::ok:
+      return "ok";
+    case Status::budget_exceeded:
+      return "budget exceeded";
+    case Status::not_available:
+      return "not available in this build";
+    case Status::failed:
+      return "failed";
   }
   return "?";
 }
@@ -73,7 +77,8 @@ Eigen::VectorXd signal_values(const Trajectory& r, const Signal& s) {
     Eigen::VectorXd a(x.size());
     for (Eigen::Index i = 0; i < x.size(); ++i) {
       a[i] = std::atan2(y[i] - s.y0, x[i] - s.x0);
-      if (i > 0) a[i] -= 2 * std::numbers::pi * std::round((a[i] - a[i - 1]) / (2 * std::numbers::pi));
+      if (i > 0)
+        a[i] -= 2 * std::numbers::pi * std::round((a[i] - a[i - 1]) / (2 * std::numbers::pi));
     }
     return a;
   }
@@ -149,7 +154,8 @@ RunResult run_case(const SceneCase& sc, const Fidelity& f, const RunSpec& spec) 
     }
   } catch (const Error& e) {
     const std::string m = e.what();
-    res.status = m.find("budget of") != std::string::npos ? Status::budget_exceeded : Status::failed;
+    res.status =
+        m.find("budget of") != std::string::npos ? Status::budget_exceeded : Status::failed;
     res.message = m;
     return res;
   }
