@@ -39,7 +39,7 @@ std::vector<std::string> split_path(const std::string& path) {
 }
 
 // The map at keys[0..n-2] below `root` (created for a set, required for an erase).
-void apply_edit(YAML::Node root, const Edit& e) {
+void apply_edit(const YAML::Node& root, const Edit& e) {
   const std::vector<std::string> keys = split_path(e.path);
   YAML::Node node = root;
   for (std::size_t i = 0; i + 1 < keys.size(); ++i) {
