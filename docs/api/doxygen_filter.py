@@ -6,7 +6,10 @@ Doxygen as documentation, line for line (line numbers are kept, so warnings poin
 
 - the block after `#pragma once` (the file's maths) becomes the file's documentation (`@file`);
 - a `//` block directly followed by a declaration (no blank line) at namespace or class scope
-  becomes `///`, the documentation of that declaration;
+  becomes `///`, the documentation of that declaration, and of the declarations that follow it
+  without a blank line or a comment of their own (a block above `potential_energy` and
+  `damping_power` documents both);
+- `T a = 0, b = 0;` is shown as `T a = 0; T b = 0;`, each with the comment of the line;
 - a trailing `// text` after a declaration becomes `///< text`, and so do the `//` lines aligned
   under it that continue it;
 - comments inside function bodies, and blocks followed by a blank line (section notes), stay plain.
@@ -20,17 +23,29 @@ TRAILING = re.compile(r"^(.*?\S.*?)(\s+)//\s?(.*)$")
 SCOPE = re.compile(r"\b(namespace|struct|class|union|enum)\b")
 
 
+ABBREVIATION = re.compile(r"\b(eq|e\.g|i\.e|ch|etc|vs|cf|Fig|Def|Prop|Ex)\. ")
+
+
+def escape_plain(p):
+    """Escape Doxygen commands and HTML-like tags (text outside code spans and quotes)."""
+    p = p.replace("\\", "\\\\").replace("@", "\\@").replace("<", "\\<").replace(">", "\\>")
+    p = p.replace("#", "\\#").replace("%", "\\%").replace("&", "\\&").replace("$", "\\$")
+    return ABBREVIATION.sub(r"\1.\\ ", p)  # "eq. 5.27" does not end the brief description
+
+
 def escape(text):
-    """Escape Doxygen commands and HTML-like tags outside `code spans`."""
+    """Escape text outside `code spans` and "quotes" (Doxygen reads both literally)."""
+    text = text.replace("*/", "* /")
     parts = text.split("`")
-    for k in range(0, len(parts), 2):  # even parts are outside backticks
-        p = parts[k]
-        p = p.replace("\\", "\\\\").replace("@", "\\@").replace("<", "\\<").replace(">", "\\>")
-        p = p.replace("#", "\\#").replace("%", "\\%").replace("&", "\\&").replace("$", "\\$")
-        p = p.replace("*/", "* /")
-        parts[k] = p
     if len(parts) % 2 == 0:  # an unmatched backtick: leave it as text
         parts[-2] += "\\`" + parts.pop()
+    for k in range(0, len(parts), 2):  # even parts are outside backticks
+        quoted = parts[k].split('"')
+        if len(quoted) % 2 == 1:  # balanced quotes: odd parts are quoted
+            quoted = [q if j % 2 else escape_plain(q) for j, q in enumerate(quoted)]
+            parts[k] = '"'.join(quoted)
+        else:
+            parts[k] = escape_plain(parts[k])
     return "`".join(parts)
 
 
@@ -70,14 +85,14 @@ def file_block(lines, i, out):
         out.append("")
         return i
     out.append("/** @file")
-    for k in range(i, j):
-        text = escape(COMMENT.match(lines[k]).group(2))
-        out.append(text + (" */" if k == j - 1 else ""))
+    texts = escape("\n".join(COMMENT.match(lines[k]).group(2) for k in range(i, j))).split("\n")
+    for k, text in enumerate(texts):
+        out.append(text + (" */" if k == len(texts) - 1 else ""))
     return j
 
 
 DECLARATOR = r"\w+(?:\s*=\s*[^,;{}()]+|\{[^{}]*\})?"
-MULTI = re.compile(r"^(\s*)((?:(?:static|constexpr|const|inline|mutable)\s+)*[\w:]+(?:<[^;]*>)?)\s+("
+MULTI = re.compile(r"^(\s*)((?:(?:extern|static|constexpr|const|inline|mutable)\s+)*[\w:]+(?:<[^;]*>)?)\s+("
                    + DECLARATOR + r"(?:\s*,\s*" + DECLARATOR + r")+);\s*$")
 
 
@@ -103,14 +118,30 @@ def split_declarators(code, doc, first_documented):
     return m.group(1) + " ".join(out)
 
 
+CLOSE_VAR = re.compile(r"^\s*\}\s*\w+[^;{}]*;\s*$")
+ENUM_VAR = re.compile(r"^\s*enum\b[^{]*\{[^}]*\}\s*\w+[^;]*;\s*$")
+
+
+def join_continued_declarators(lines):
+    """`T a, b,` / `    c;` (one declaration over two lines) on one line, an empty line after."""
+    out = list(lines)
+    for k in range(len(out) - 1):
+        code, nxt = code_of(out[k]).rstrip(), code_of(out[k + 1]).strip()
+        if code.endswith(",") and "(" not in code and nxt.endswith(";") and "(" not in nxt \
+                and "//" not in out[k] and "//" not in out[k + 1] and MULTI.match(code + " " + nxt):
+            out[k], out[k + 1] = code + " " + nxt, ""
+    return out
+
+
 class Filter:
     def __init__(self, lines):
-        self.lines = lines
+        self.lines = join_continued_declarators(lines)
         self.out = []
         self.stack, self.pending = [], False
         self.trailing_col = -1  # column of the last trailing comment, for its continuation lines
         self.run_doc = None  # the doc of the block above a run of declarations
         self.run_first_done = False  # the run's first statement has ended
+        self.close_doc = None  # the comment above `} name = ...;` (an enum's variable)
 
     def comment_block(self, i):
         lines, out = self.lines, self.out
@@ -123,12 +154,13 @@ class Filter:
         while j < len(lines) and COMMENT.match(lines[j]):
             j += 1
         nxt = lines[j] if j < len(lines) else ""
+        if CLOSE_VAR.match(code_of(nxt)):  # `// text` above `} kind = ...;`: the variable's doc
+            self.close_doc = " ".join(escape(COMMENT.match(lines[k]).group(2)) for k in range(i, j))
         documents = doc_scope(self.stack) and nxt.strip() and not nxt.lstrip().startswith(("#", "}"))
-        texts = []
-        for k in range(i, j):
-            c = COMMENT.match(lines[k])
-            texts.append(escape(c.group(2)))
-            out.append(c.group(1) + ("/// " + texts[-1] if documents else "// " + c.group(2)))
+        raw = [COMMENT.match(lines[k]) for k in range(i, j)]
+        texts = escape("\n".join(c.group(2) for c in raw)).split("\n")  # quotes may span lines
+        for c, text in zip(raw, texts):
+            out.append(c.group(1) + ("/// " + text if documents else "// " + c.group(2)))
         self.trailing_col = -1
         self.run_doc = " ".join(texts) if documents else None
         self.run_first_done = False
@@ -139,18 +171,29 @@ class Filter:
         t = TRAILING.match(line)
         has_trailing = bool(t) and code.rstrip() == code_of(t.group(1)).rstrip()
         at_doc = doc_scope(self.stack) and not line.lstrip().startswith("#")
-        ends = code.rstrip().endswith(";")
-        if not line.strip() or "{" in code or code.lstrip().startswith(("}", "#", "public", "private")):
+        balanced = code.count("{") == code.count("}")
+        ends = code.rstrip().endswith(";") or (balanced and "{" in code and code.rstrip().endswith("}"))
+        if not line.strip() or not balanced or code.lstrip().startswith(("}", "#", "public", "private")):
             self.run_doc = None
         out = line
+        if self.close_doc and CLOSE_VAR.match(code):
+            out = line.rstrip() + f" /**< {self.close_doc} */"
+        self.close_doc = None
+        if at_doc and self.run_doc is not None and ENUM_VAR.match(code) and not has_trailing:
+            out = line.rstrip() + f" /**< {self.run_doc} */"  # the block documents the enum; this, the variable
+            self.run_first_done = True
+            self.pending = braces(code, self.stack, self.pending)
+            self.out.append(out)
+            return
         if has_trailing and at_doc:
             lead, doc = t.group(1), escape(t.group(3))
             split = split_declarators(lead, doc, False)
-            out = (split + "  " if split else lead + t.group(2) + "///< " + doc)
-            if split:
-                out = split
+            out = split if split else lead + t.group(2) + "///< " + doc
+            if SCOPE.search(lead) and lead.rstrip().endswith("{"):  # `struct X {  // text`
+                indent = lead[: len(lead) - len(lead.lstrip())]
+                out = f"{indent}/** {doc} */ {lead.strip()}"
             self.trailing_col = len(lead) + len(t.group(2)) if not split else -1
-            self.run_first_done = self.run_first_done or ends
+            self.run_doc = None  # a member with its own comment ends the run of the block above
         else:
             self.trailing_col = -1
             if at_doc and self.run_doc is not None:
@@ -162,7 +205,7 @@ class Filter:
                 self.run_first_done = self.run_first_done or ends
             elif at_doc and code.strip():
                 split = split_declarators(code, "", True)
-                out = split.replace(" /**<  */", "") if split else line  # undocumented: left to warn
+                out = split.replace(" /**<  */", "") if split else out  # undocumented: left to warn
         self.pending = braces(code, self.stack, self.pending)
         self.out.append(out)
 
