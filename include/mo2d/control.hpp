@@ -15,6 +15,9 @@
 
 namespace mo2d {
 
+// A PD controller with feed-forward on one input: u = u_ff(t) + kp (r(t) - q) + kd (r'(t) - v), q
+// the controlled coordinate and v its rate (docs/scene-format.md, controllers); pd_control() makes
+// its Law.
 struct PdControl {
   std::string coordinate{};  // the controlled coordinate label ("crank.angle", "slide.q")
   std::string rate{};        // its quasi-velocity label; empty: rate_label(coordinate)

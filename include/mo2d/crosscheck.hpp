@@ -28,6 +28,8 @@
 
 namespace mo2d {
 
+// Settings of the Box2D cross-check (docs/crosscheck.md): Box2D's step and solver sweeps, how its
+// motors follow the prescribed motion, and the tolerances of the verdict.
 struct CrosscheckOptions {
   double step = 1.0 / 2000;      // Box2D time step h (s)
   int velocity_iterations = 50;  // sequential-impulse sweeps per step
@@ -69,20 +71,28 @@ struct CrosscheckOptions {
 // Error of one compared quantity (an effort, or a joint's reaction force vector), relative to the
 // peak magnitude of mo2d's value over the compared steps.
 struct ChannelError {
+  // effort label (an input of the mechanism) or reaction label (joint.Fx, joint.Fy)
   std::string label{};
   double peak = 0;          // max |mo2d value| (N m, N)
   double rms = 0, max = 0;  // relative: rms |box2d - mo2d| / peak, max |...| / peak
   double max_time = 0;      // time of the largest error (s)
 };
 
+// The result of crosscheck_inverse(): the settings used, the error of every effort and joint
+// reaction of Box2D against mo2d's inverse dynamics, the verdict and the time series.
 struct CrosscheckReport {
+  // the mechanism's name (Model::name)
   std::string mechanism{};
+  // Box2D time step h (s)
   double step = 0;
+  // Box2D's solver sweeps per step (CrosscheckOptions)
   int velocity_iterations = 0, position_iterations = 0;
+  // the options' sample_offset (fraction of a step) and feedback_time (s)
   double sample_offset = 0, feedback_time = 0;
   int steps = 0;           // Box2D steps from t0
   int settle_steps = 0;    // Box2D steps before t0 (not compared)
   int compared_steps = 0;  // steps in the statistics
+  // one ChannelError per input (efforts) and per joint (reactions, the force vector)
   std::vector<ChannelError> efforts{}, reactions{};
   double effort_rms = 0, effort_max = 0;      // worst channel
   double reaction_rms = 0, reaction_max = 0;  // worst joint
@@ -90,10 +100,12 @@ struct CrosscheckReport {
   std::vector<std::string> notes{};     // substitutions made (zero_inertia_fraction)
   bool agree = false;                   // all errors within the options' tolerances
   std::vector<std::string> failures{};  // which tolerance was exceeded, by which channel
+  // CPU time of the Box2D run (s)
   double cpu_seconds = 0;
   // Time series (one row per compared step): t (the compared instant), mo2d and Box2D values.
   Eigen::VectorXd time{};
   std::vector<std::string> effort_labels{}, reaction_labels{};  // reaction labels: joint.Fx/.Fy
+  // values per compared step (rows) and channel (columns): N m or N
   Eigen::MatrixXd mo2d_efforts{}, box2d_efforts{}, mo2d_reactions{}, box2d_reactions{};
 };
 
@@ -117,15 +129,21 @@ CrosscheckReport crosscheck_inverse(const System& system, std::span<const Prescr
 // and body angles are compared at `samples` instants that fall on Box2D steps. `model` must be
 // built with Reduction::none; check.zero_inertia_fraction applies as in crosscheck_inverse.
 struct ForwardCrosscheck {
+  // the mechanism's name (Model::name)
   std::string mechanism{};
+  // Box2D time step h (s)
   double step = 0;
+  // Box2D steps from t0 to t1
   int steps = 0;
   double max_position_error = 0;  // max over bodies and instants of |centre of mass error| (m)
   double max_angle_error = 0;     // rad
+  // errors at t1: centre of mass (m) and angle (rad), worst body
   double final_position_error = 0, final_angle_error = 0;
   double relative_position_error = 0;                       // max_position_error / Model::scale
   Eigen::VectorXd time{}, position_error{}, angle_error{};  // per instant, worst body
 };
+// Forward cross-check of `model` from `initial` up to t1 (s), compared at `samples` instants (see
+// ForwardCrosscheck).
 ForwardCrosscheck crosscheck_forward(const Model& model, const State& initial, double t1,
                                      const CrosscheckOptions& check = {}, int samples = 101);
 

@@ -23,6 +23,7 @@ namespace mo2d {
 // written. `units` (one per column, trajectory_csv_units): written as a second header line; none:
 // no such line.
 std::string trajectory_csv(const Trajectory& r, std::span<const std::string> units = {});
+// trajectory_csv(r) written to `path` (atomically: a temporary file, then a rename).
 void write_trajectory_csv(const Trajectory& r, const std::string& path);
 
 // The header of trajectory_csv(r): its column labels, in order.

@@ -51,23 +51,29 @@ double torque_value(const Model& m, const TorqueLoad& tq, const Eigen::Ref<const
 // law's, clipped for a unilateral spring, or k (l - l0) + c dl/dt) at (t, q0, q1); its power on
 // the mechanism is -T dl/dt.
 struct SpringValue {
+  // l (m), dl/dt (m/s), T (N)
   double length = 0, rate = 0, tension = 0;
 };
+// The SpringValue of spring `s` of model `m` at time t (s), positions q0 and rates q1.
 SpringValue spring_value(const Model& m, const SpringLoad& s, const Eigen::Ref<const VectorXd>& q0,
                          const Eigen::Ref<const VectorXd>& q1, double t);
 // A torsional spring's torque on body 2 (its opposite on body 1; the law's, or
 // -k theta - c (w2 - w1)) and the relative rate w2 - w1; its power is torque (w2 - w1).
 struct TorsionalValue {
+  // torque (N m) and w2 - w1 (rad/s)
   double torque = 0, rate = 0;
 };
+// The TorsionalValue of torsional spring `l` at time t (s), positions q0 and rates q1.
 TorsionalValue torsional_value(const Model& m, const TorsionalLoad& l,
                                const Eigen::Ref<const VectorXd>& q0,
                                const Eigen::Ref<const VectorXd>& q1, double t);
 // A chain drive's spans (ChainLoad; src/dynamics/chain.hpp): each span's material length and
 // tension (> 0 pulls), and the chain's power on the mechanism, -sum T dl/dt.
 struct ChainValue {
+  // material lengths of the two spans (m), their tensions (N, >= 0) and the chain's power (W)
   double upper_length = 0, upper_tension = 0, lower_length = 0, lower_tension = 0, power = 0;
 };
+// The ChainValue of chain `c` at time t (s), positions q0 and rates q1.
 ChainValue chain_value(const Model& m, const ChainLoad& c, const Eigen::Ref<const VectorXd>& q0,
                        const Eigen::Ref<const VectorXd>& q1, double t);
 // The value of every joint friction (Model::frictions; FrictionDef in mo2d/system.hpp) at the

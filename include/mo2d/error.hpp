@@ -8,8 +8,11 @@
 
 namespace mo2d {
 
+// The exception thrown by mo2d: a message, the offending element's label and the time of a run.
 class Error : public std::runtime_error {
  public:
+  // `what`: the message; `element`: the label of the element at fault; `time`: the time (s) of the
+  // run at which it was found (NaN: outside a run).
   explicit Error(const std::string& what, std::string element = {},
                  double time = std::numeric_limits<double>::quiet_NaN())
       : std::runtime_error(what), element_(std::move(element)), time_(time) {}

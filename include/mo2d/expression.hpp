@@ -30,7 +30,9 @@ namespace mo2d {
 // A parse or binding error; column() is 1-based in the expression text.
 class ExpressionError : public Error {
  public:
+  // `what`: the message; `column`: 1-based column in the expression text.
   ExpressionError(const std::string& what, int column) : Error(what), column_(column) {}
+  // 1-based column of the offending character in the expression text.
   int column() const { return column_; }
 
  private:
@@ -41,17 +43,23 @@ class ExpressionError : public Error {
 // out, so it must apply the chain rule (value, first and second derivative along the argument's
 // direction). Built-in names take precedence: give it a name that is not one.
 struct NamedFunction {
+  // the name expressions call it by
   std::string name{};
+  // the function, applying the chain rule to its Jet argument
   std::function<Jet(Jet)> f{};
 };
 
 // What a name stands for.
 struct Binding {
+  // what the name is: not yet bound, a constant (value), the time t, a variable (index)
   enum class Kind { unbound, constant, time, variable } kind = Kind::unbound;
   double value = 0;  // constant
   int index = -1;    // variable: index into the span passed to evaluate()
 };
 
+// An arithmetic expression of a scene (docs/scene-format.md, expressions) over named constants, the
+// time t and variables, evaluated with its first two derivatives (Jet): parse() it, bind() its
+// names, then evaluate().
 class Expression {
  public:
   // Throws ExpressionError with the column of the offending character (an unknown function or
@@ -62,6 +70,7 @@ class Expression {
   static std::vector<std::string> function_names();
   static bool is_function(std::string_view name);
 
+  // The text it was parsed from.
   const std::string& text() const { return text_; }
   // Names the expression uses (not functions, not pi), unique, in order of first use.
   std::vector<std::string> names() const;
@@ -74,6 +83,7 @@ class Expression {
   // Value and first two derivatives (along t and the variables' own derivatives). All names must
   // be bound. No allocation.
   Jet evaluate(std::span<const Jet> variables = {}, Jet t = {}) const;
+  // Whether the value depends on the time t (a name bound to Kind::time).
   bool depends_on_time() const;
 
  private:

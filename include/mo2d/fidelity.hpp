@@ -25,12 +25,19 @@ namespace mo2d {
 // The time scales of a run: its duration, the interval between output samples, and the step of a
 // fixed-step integrator (0 for an adaptive one).
 struct RunTimeScale {
+  // duration of the run (s)
   double duration = 1;
+  // interval between output samples (s)
   double output_interval = 0.01;
+  // step of a fixed-step integrator (s; 0: adaptive)
   double step = 0;
 };
 
+// One compliant element (a spring, a torsional spring, a chain span) in the fidelity report: its
+// stiffness and damping, the inertia it moves, its natural frequency omega = sqrt(k / m_r) and the
+// error expected if it were reduced to a constraint (docs/reduction.md).
 struct CompliantElement {
+  // the element's name in the model
   std::string name;
   std::string kind;          // "spring", "torsional spring", "chain span" (+ " (taut)")
   bool reduced = false;      // already reduce: constraint

@@ -31,6 +31,7 @@ namespace mo2d {
 using Eigen::MatrixXd;
 using Eigen::VectorXd;
 
+// The integrator of forward dynamics (docs/performance.md compares them).
 enum class Integrator {
   cvode_bdf,    // SUNDIALS CVODE, BDF (orders 1-5), Newton + dense LU, projection each step
   cvode_adams,  // SUNDIALS CVODE, Adams-Moulton (orders 1-12), fixed-point iteration, no projection
@@ -42,6 +43,10 @@ enum class Integrator {
   baumgarte,  // Mo2DPack-compatible: RK4, velocity constraints stabilized by Baumgarte, no
               // projection
 };
+// How the accelerations a1 and multipliers lambda of [M A^T; A 0][a1; lambda] = [f + B u; c]
+// are solved: the augmented-Lagrangian iteration (Bayo and Garcia de Jalon; H = M + alpha A^T A,
+// src/forward/alf_iterate.hpp), the KKT system itself (lagrange), or the null space
+// (K = [A; E] with E selecting dof independent variables, Orsino 2016 Theorem 2.8's C).
 enum class Formulation { augmented_lagrangian, lagrange, null_space };
 // The matrices of the accelerations, the projection and the reactions (docs/performance.md,
 // "Sparse engine"): dense (Schur complement with the constant M^-1, dense Cholesky and LU: the
@@ -51,15 +56,20 @@ enum class Formulation { augmented_lagrangian, lagrange, null_space };
 // it is available (the augmented Lagrangian with rk4, dopri5 or baumgarte) and the mechanism has
 // n1 + m1 >= kSparseCrossover variables and velocity rows, else dense.
 enum class LinearAlgebra { automatic, dense, sparse };
+// n1 + m1 (variables and velocity rows) from which LinearAlgebra::automatic uses sparse matrices.
 inline constexpr int kSparseCrossover = 40;
 
+// The option's name as written in scenes and on the command line ("cvode_bdf", ...).
 const char* to_string(Integrator i);
 const char* to_string(Formulation f);
 const char* to_string(LinearAlgebra a);
 
 // A consistent state (positions on psi = 0, velocities on A q1 = b).
 struct State {
+  // time (s)
   double t = 0;
+  // positions q0 (m, or rad for angle coordinates) and quasi-velocities q1 (m/s, rad/s), in Model
+  // order
   VectorXd q0, q1;
 };
 
@@ -71,20 +81,27 @@ struct InitialConditions {
   std::vector<std::pair<std::string, double>> positions;   // coordinate label -> value
   std::vector<std::pair<std::string, double>> velocities;  // quasi-velocity label -> value
 };
+// The State at t0 (s) for the initial conditions `ic` of model `m` (see InitialConditions).
 State consistent_state(const Model& m, const InitialConditions& ic, double t0 = 0);
 
 // One effort law per input; assignable from time functions (what efforts_from_inverse returns).
 struct EffortLaws : std::vector<Law> {
   using std::vector<Law>::vector;
   EffortLaws() = default;
+  // One time law per input (efforts in N m or N against t in s).
   EffortLaws(const std::vector<std::function<double(double)>>& fns)  // NOLINT: implicit on purpose
       : std::vector<Law>(fns.begin(), fns.end()) {}
 };
 
+// The settings of forward_dynamics(): time span, output samples, integrator and tolerances,
+// budgets, input efforts, checks and monitors.
 struct ForwardOptions {
+  // start and end time of the run (s)
   double t0 = 0, t1 = 1;
   int samples = 101;  // output times, equally spaced in [t0, t1] (dense output)
+  // the integrator (ignored when accuracy > 0)
   Integrator integrator = Integrator::cvode_bdf;
+  // the equations of the accelerations
   Formulation formulation = Formulation::augmented_lagrangian;
   double rtol = 1e-8, atol = 1e-10;  // CVODE and dopri5 tolerances (atol in SI units)
   double step = 1e-3;  // fixed step (rk4, baumgarte); shortened so that steps end on output times
@@ -129,12 +146,14 @@ struct ForwardOptions {
   // Called about every monitor_interval seconds of wall time from inside the integration (also
   // between output times): time reached, steps, step size, whether the step size collapsed.
   std::function<void(const RunProgress&)> monitor{};
+  // wall-clock seconds between calls of monitor
   double monitor_interval = 1.0;
 };
 
 // The bounds of ForwardOptions::accuracy (src/forward/accuracy.cpp: the range calibrated; below
 // it, the regularized accelerations next to singular configurations and round-off limit what the
 // integrators reach).
+// smallest and largest value of ForwardOptions::accuracy (relative position error)
 extern const double kMinAccuracy, kMaxAccuracy;
 
 // o with the integrator and tolerances chosen for o.accuracy on m (unchanged if o.accuracy is 0,
@@ -165,6 +184,8 @@ Trajectory forward_dynamics(const Model& m, const State& initial, const ForwardO
 std::vector<std::function<double(double)>> efforts_from_inverse(const Model& m,
                                                                 std::vector<Prescribed> prescribed,
                                                                 const InverseOptions& options = {});
+// Efforts interpolated from the samples of an inverse-dynamics run `r` (cubic Hermite; see above),
+// one function of t (s) per input, in N m or N.
 std::vector<std::function<double(double)>> efforts_from_samples(const Trajectory& r);
 
 // Energy balance of a run at every sample: K + V - (K + V)(t0) - W_inputs - W_loads

@@ -44,7 +44,9 @@ struct ForwardData {
   ForwardData(const ForwardData&) = delete;
   ForwardData& operator=(const ForwardData&) = delete;
 
+  // the model the workspace was built for (it must outlive the workspace)
   const Model& m;
+  // the options, copied at construction
   const ForwardOptions o;
 
   // With sparse linear algebra (ForwardOptions::linear_algebra, uses_sparse) the dense matrices
@@ -161,6 +163,8 @@ struct ForwardData {
   bool projects() const {
     return o.integrator != Integrator::cvode_adams && o.integrator != Integrator::baumgarte;
   }
+  // out = the dimensionless row scales of J with the column scaling d (unit rows of J diag(d);
+  // mo2d/kinematics.hpp).
   void row_scale_of(const MatrixXd& J, const VectorXd& d, VectorXd& out) const;
   // The pieces the recorder and the integrators read, on either path: A and b at (t, q0);
   // out = A q1 - b (with the A of the last fill); psi and pos_row_scale at (t, q0); out = M x;

@@ -31,18 +31,26 @@ using Eigen::VectorXd;
 // A prescribed coordinate: s(t) evaluated on Jet(t, 1, 0) gives s, s_dot, s_ddot exactly.
 struct Prescribed {
   std::string coordinate;  // coordinate label, e.g. "crank.angle", "slider.P.x", "slide.q"
+  // s(t): the coordinate's value (m or rad) as a function of time, evaluated on Jets
   std::function<Jet(Jet t)> motion;
 };
 
+// How the orthogonal complement C of the velocity rows A is formed for the efforts (Orsino 2016
+// eq. 2.28-2.29 and Theorem 2.10; docs/equations.md, "Inverse dynamics").
 enum class ComplementMethod {
   prescribed,  // C = K^-1 [0; I] from the factorization of K = [A; E] (default, fastest)
   recursive,   // S = R C built over the subsystem tree (Theorem 2.10)
 };
 
+// The settings of inverse_dynamics(): sample times, Newton's tolerance, singularity and branch
+// tests, friction iteration and budgets.
 struct InverseOptions {
+  // first and last sample time (s)
   double t0 = 0, t1 = 1;
+  // number of samples, equally spaced over [t0, t1]
   int samples = 501;
   double position_tolerance = 1e-12;  // |psi|_inf, relative to Model::scale
+  // Newton iterations allowed per sample for the positions
   int max_newton_iterations = 30;
   // Singularity tests, on the dimensionless K = [N A D; E] (D: column_scaling of the model, N:
   // unit rows; mo2d/kinematics.hpp), so independent of units and size:
@@ -64,7 +72,9 @@ struct InverseOptions {
   // called about every monitor_interval seconds.
   double max_seconds = kDefaultMaxSeconds;
   double max_memory = kDefaultMaxMemory;
+  // progress monitor (time reached, samples done), called about every monitor_interval seconds
   std::function<void(const RunProgress&)> monitor{};
+  // wall-clock seconds between monitor calls
   double monitor_interval = 1.0;
 };
 
@@ -76,13 +86,17 @@ void check_inverse_options(const Model& m, const InverseOptions& options);
 // Workspace of one inverse-dynamics run (Pinocchio's Data): everything the per-sample loop
 // needs is allocated here once.
 struct InverseData {
+  // The workspace of model `m` (it must outlive it) for the prescribed motions `prescribed` (one
+  // per degree of freedom); checks the options (check_inverse_options).
   InverseData(const Model& m, std::span<const Prescribed> prescribed, const InverseOptions& o = {});
   ~InverseData();
   InverseData(const InverseData&) = delete;
   InverseData& operator=(const InverseData&) = delete;
 
+  // the options, copied
   InverseOptions options;
   std::vector<int> p_index;  // prescribed coordinate indices
+  // the prescribed motions s(t) and their coordinate labels, in the order of p_index
   std::vector<std::function<Jet(Jet)>> p_motion;
   std::vector<std::string> p_labels;
 
@@ -94,7 +108,9 @@ struct InverseData {
   VectorXd reactions;   // Model::reactions
   VectorXd friction;    // Model::frictions: their values (N, N m), consistent with the reactions
   int friction_iterations = 0;  // fixed-point iterations of the last sample (0: no friction)
+  // residuals of the last sample: |psi|_inf, |A q1 - b|_inf, |A a1 - c|_inf (SI units of the rows)
   double residual_position = 0, residual_velocity = 0, residual_acceleration = 0;
+  // Newton iterations of the positions at the last sample
   int newton_iterations = 0;
   double pivot_ratio = 0;  // min/max |pivot| of the LU of the dimensionless K (a cheap
                            // conditioning indicator)
@@ -104,23 +120,30 @@ struct InverseData {
 
   // workspace
   std::vector<int> colmap;  // coordinate -> free column (-1 prescribed)
+  // scratch vectors and matrices of the per-sample solve (src/inverse/; not part of the results)
   VectorXd s, s_dot, s_ddot, psi, trial, q0_trial, b, c, rhs, w, f, local, local_a, z, Ctw;
   VectorXd row_residual;
   MatrixXd J, K, B, CtB;
   MatrixXd Ks;                  // dimensionless K = diag(k_row) K diag(col_scale), factored
   VectorXd col_scale, k_row;    // column_scaling of the model; row scaling of K
   VectorXd pos_scale, q0_pred;  // its first n0 entries (dimensionless q0 / pos_scale); prediction
+  // sign of det K at the last two samples (a change: a singular configuration passed)
   int det_sign = 0, det_sign_prev = 0;
   bool near_singular = false;  // inside a run of samples below near_singular_pivot_ratio
+  // smallest pivot ratio in the current near-singular run, and its time (s)
   double near_min = 1, near_t = 0;
   std::string near_what;  // prescribed values and variables at the smallest pivot ratio
   MatrixXd S;  // orthogonal complement C (n1 x dof) used for the efforts of the last sample
   std::unique_ptr<detail::SmallLU> lu_pos, lu_K;  // positions (free coordinates), K = [A; E]
+  // LU of the effort equations C^T B u = C^T (M a1 - f) (C^T f = 0 of Orsino 2016 eq. 4.1,
+  // Theorem 4.3)
   Eigen::PartialPivLU<MatrixXd> lu_u;
   std::vector<double> edge_force;  // per merge edge: 2 (node) or 1 (rotation) values
+  // first entry of each merge edge in edge_force
   std::vector<int> edge_offset;
   std::vector<detail::SlotEntry> entries;  // A entries attributed to body slots (reactions)
   VectorXd friction_next, local_base;      // friction iteration: next values; M a - f, local
+  // the previous sample (time, positions, rates, accelerations), for the prediction of the next
   bool has_previous = false;
   double t_prev = 0;
   VectorXd q0_prev, q1_prev, a1_prev;

@@ -18,6 +18,9 @@
 
 namespace mo2d {
 
+// The exact derivatives of the accelerations a1(t, q0, q1) of forward dynamics with respect to the
+// state (docs/equations.md: [M A^T; A 0][da; dlambda] = [df + B du - dA^T lambda; dc - dA a]);
+// CVODE BDF's Newton matrix and the linearization use it.
 struct AccelerationJacobian {
   Eigen::MatrixXd da_dq0;   // n1 x n0: d a1 / d q0
   Eigen::MatrixXd da_dq1;   // n1 x n1: d a1 / d q1

@@ -6,25 +6,33 @@
 
 namespace mo2d {
 
+// A value with its first and second derivative along one direction (see the file's description); in
+// the unit of what it carries, per unit of the direction's parameter.
 struct Jet {
   double v = 0;   // value
   double d = 0;   // first derivative
   double dd = 0;  // second derivative
   constexpr Jet() = default;
   constexpr Jet(double value) : v(value) {}  // NOLINT: implicit on purpose (constants)
+  // A Jet with its value and first and second derivatives.
   constexpr Jet(double value, double d1, double d2) : v(value), d(d1), dd(d2) {}
+  // The independent variable at `value`: derivative 1, second derivative 0.
   static constexpr Jet variable(double value) { return {value, 1.0, 0.0}; }
 };
 
+// Sum (value and derivatives add).
 inline Jet operator+(Jet a, Jet b) {
   return {a.v + b.v, a.d + b.d, a.dd + b.dd};
 }
+// Difference.
 inline Jet operator-(Jet a, Jet b) {
   return {a.v - b.v, a.d - b.d, a.dd - b.dd};
 }
+// Negation.
 inline Jet operator-(Jet a) {
   return {-a.v, -a.d, -a.dd};
 }
+// Product (Leibniz rule: (ab)'' = a'' b + 2 a' b' + a b'').
 inline Jet operator*(Jet a, Jet b) {
   return {a.v * b.v, a.d * b.v + a.v * b.d, a.dd * b.v + 2 * a.d * b.d + a.v * b.dd};
 }
@@ -32,58 +40,73 @@ inline Jet operator*(Jet a, Jet b) {
 inline Jet chain(Jet a, double f0, double f1, double f2) {
   return {f0, f1 * a.d, f2 * a.d * a.d + f1 * a.dd};
 }
+// Quotient a * (1/b), 1/b by the chain rule.
 inline Jet operator/(Jet a, Jet b) {
   const double inv = 1.0 / b.v;
   return a * chain(b, inv, -inv * inv, 2 * inv * inv * inv);
 }
+// a = a + b.
 inline Jet& operator+=(Jet& a, Jet b) {
   return a = a + b;
 }
+// a = a - b.
 inline Jet& operator-=(Jet& a, Jet b) {
   return a = a - b;
 }
+// a = a * b.
 inline Jet& operator*=(Jet& a, Jet b) {
   return a = a * b;
 }
+// a = a / b.
 inline Jet& operator/=(Jet& a, Jet b) {
   return a = a / b;
 }
 
+// sin, by the chain rule (a in rad).
 inline Jet sin(Jet a) {
   const double s = std::sin(a.v), c = std::cos(a.v);
   return chain(a, s, c, -s);
 }
+// cos, by the chain rule (a in rad).
 inline Jet cos(Jet a) {
   const double s = std::sin(a.v), c = std::cos(a.v);
   return chain(a, c, -s, -c);
 }
+// tan, by the chain rule (a in rad).
 inline Jet tan(Jet a) {
   const double t = std::tan(a.v), s2 = 1 + t * t;
   return chain(a, t, s2, 2 * t * s2);
 }
+// exp, by the chain rule.
 inline Jet exp(Jet a) {
   const double e = std::exp(a.v);
   return chain(a, e, e, e);
 }
+// Natural logarithm, by the chain rule.
 inline Jet log(Jet a) {
   return chain(a, std::log(a.v), 1 / a.v, -1 / (a.v * a.v));
 }
+// Square root, by the chain rule.
 inline Jet sqrt(Jet a) {
   const double r = std::sqrt(a.v);
   return chain(a, r, 0.5 / r, -0.25 / (r * a.v));
 }
+// a to a constant power p, by the chain rule.
 inline Jet pow(Jet a, double p) {
   const double f0 = std::pow(a.v, p);
   const double f1 = p * std::pow(a.v, p - 1);
   const double f2 = p * (p - 1) * std::pow(a.v, p - 2);
   return chain(a, f0, f1, f2);
 }
+// a to the power b, exp(b log a) (a > 0).
 inline Jet pow(Jet a, Jet b) {
   return exp(b * log(a));
 }
+// |a|: the derivatives of the branch taken (not differentiable at 0).
 inline Jet abs(Jet a) {
   return a.v < 0 ? -a : a;
 }
+// The angle of (x, y) in (-pi, pi] (rad), with its derivatives.
 inline Jet atan2(Jet y, Jet x) {
   // d atan2 = (x dy - y dx) / r2, computed through the quotient rule on components.
   const Jet r2 = x * x + y * y;
@@ -94,9 +117,11 @@ inline Jet atan2(Jet y, Jet x) {
   const double dd = num.dd / r2.v - num.d * r2.d / (r2.v * r2.v);
   return {v, d, dd};
 }
+// The smaller of a and b (by value), with its derivatives.
 inline Jet min(Jet a, Jet b) {
   return a.v <= b.v ? a : b;
 }
+// The larger of a and b (by value), with its derivatives.
 inline Jet max(Jet a, Jet b) {
   return a.v >= b.v ? a : b;
 }
@@ -105,6 +130,7 @@ inline Jet max(Jet a, Jet b) {
 inline Jet floor(Jet a) {
   return Jet(std::floor(a.v));
 }
+// The smallest integer >= a (derivatives 0).
 inline Jet ceil(Jet a) {
   return Jet(std::ceil(a.v));
 }

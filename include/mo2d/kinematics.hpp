@@ -50,7 +50,9 @@ VectorXd column_scaling(const Model& m);
 // J diag(d) with every nonzero row divided by its norm, into out.
 void dimensionless_jacobian(const MatrixXd& J, const VectorXd& d, MatrixXd& out);
 
+// Rank and singular values of a dimensionless constraint Jacobian (see column_scaling).
 struct Conditioning {
+  // its size and numerical rank
   int rows = 0, cols = 0, rank = 0;
   // extreme singular values of the dimensionless Jacobian (column_scaling of the model, unit
   // rows): independent of units and of the mechanism's size
@@ -69,16 +71,21 @@ Conditioning conditioning(const MatrixXd& J, const VectorXd& column_scale);
 // and the variables of the motion they no longer determine (right singular vector), each as the
 // labels of its largest entries (at most three, above 10 % of the largest): "'a', 'b'".
 struct SingularDirection {
+  // labels of the rows that become dependent, and of the variables they leave undetermined
   std::string rows, variables;
 };
+// The SingularDirection of J with column scaling d; row_labels and col_labels name J's rows and
+// columns.
 SingularDirection singular_direction(const MatrixXd& J, const VectorXd& d,
                                      const std::vector<std::string>& row_labels,
                                      const std::vector<std::string>& col_labels);
 
 // Degrees of freedom at velocity level n1 - rank(A) and position level n0 - rank(Psi) at q0.
 struct DofReport {
+  // velocity-level and position-level degrees of freedom
   int velocity = 0, position = 0;
 };
+// The DofReport of model m at positions q0 and time t (s) (Orsino 2016 Def. 2.5).
 DofReport degrees_of_freedom(const Model& m, const VectorXd& q0, double t = 0);
 
 }  // namespace mo2d

@@ -26,8 +26,12 @@
 
 namespace mo2d {
 
+// A function of time t (s), in the unit of the quantity it gives.
 using Signal = std::function<double(double t)>;
 
+// A load, effort or spring law: a function f(x, t) of some quantities x of the state (named by
+// args, e.g. "crank.angle", "crank.w") and of the time t (s), in the unit of what it drives (N, N
+// m).
 struct Law {
   // Labels of the quantities f reads, in the order of its argument x.
   std::vector<std::string> args{};
@@ -36,6 +40,7 @@ struct Law {
   std::function<Jet(std::span<const Jet> x, Jet t)> f{};
 
   Law() = default;
+  // A law of the quantities `labels` given by fn(x, t).
   Law(std::vector<std::string> labels, std::function<Jet(std::span<const Jet>, Jet)> fn)
       : args(std::move(labels)), f(std::move(fn)) {}
   // A function of time only (the loads of earlier versions: any double(double) callable).
@@ -44,9 +49,12 @@ struct Law {
       Law(F fn)  // NOLINT(google-explicit-constructor): a time function is a law
       : Law(Signal(std::move(fn))) {}
   Law(Signal fn);  // NOLINT(google-explicit-constructor)
+  // The law of constant value `value`.
   static Law constant(double value);
 
+  // Whether the law is set (an empty law: zero).
   explicit operator bool() const { return static_cast<bool>(f); }
+  // Whether it reads the state (a feedback law), not only the time.
   bool depends_on_state() const { return !args.empty(); }
 };
 

@@ -30,6 +30,8 @@
 
 namespace mo2d {
 
+// The settings of linearize() and linearize_along(): the independent coordinates, the outputs and
+// the forward-dynamics settings whose accelerations are linearized (Orsino 2016 Proposition 4.4).
 struct LinearizeOptions {
   // Independent coordinates (q0 labels, p of them) and the further independent quasi-velocities
   // (q1 labels, dof - p); empty: chosen by pivoting. Given: checked (Error naming them).
@@ -47,11 +49,13 @@ struct LinearizeOptions {
 
 // The linear model dx/dt = G x + H u, y = C x + D u about a reference, with its labels.
 struct StateSpace {
+  // time of the reference (s)
   double t = 0;
   Eigen::VectorXd q0, q1, u;  // the reference state and efforts (u: the laws' values there)
   int p = 0, dof = 0;         // position and velocity coordinates: x = (z, w), n = p + dof
   std::vector<int> coordinate_vars, velocity_vars;  // z_i = q0[coordinate_vars[i]], w likewise
   std::vector<std::string> states;                  // p coordinate labels, then dof rate labels
+  // labels of the inputs u (Model::inputs) and of the outputs y (LinearizeOptions::outputs)
   std::vector<std::string> inputs, outputs;
   Eigen::MatrixXd G, H, C, D;  // n x n, n x nu, ny x n, ny x nu
   Eigen::VectorXd drift;       // n: dx/dt at the reference (0 at an equilibrium)
@@ -63,6 +67,7 @@ struct StateSpace {
   // smaller of the smallest singular values of the selected rows of orthonormal bases of the two
   // tangent spaces (dimensionless columns): 1 ideal, 0 where the chart is singular.
   double conditioning = 1;
+  // The number of states n = p + dof.
   int n() const { return p + dof; }
 };
 
@@ -96,14 +101,18 @@ std::vector<StateSpace> linearize_along(const Model& m, const std::vector<State>
 std::vector<StateSpace> linearize_along(const Model& m, const Trajectory& reference,
                                         const LinearizeOptions& o = {});
 
+// The settings of static_equilibrium().
 struct EquilibriumOptions {
   double t = 0;              // time of the loads and laws
   double tolerance = 1e-10;  // on |E a1|, relative to |g| (or to the start's, without gravity)
   int max_iterations = 50;   // Newton iterations
   double max_step = 0.25;    // largest step, as a fraction of Model::scale (dimensionless)
+  // the coordinates and the forward settings of the linearization at the equilibrium
   LinearizeOptions linearize{};
 };
 
+// The result of static_equilibrium(): the state at rest, its convergence, the linearization there
+// and the reduced stiffness and mass.
 struct Equilibrium {
   State state;          // q1 = 0
   int iterations = 0;   // Newton iterations
@@ -135,6 +144,7 @@ Eigen::VectorXd holding_efforts(const Model& m, const Eigen::VectorXd& q0, doubl
 
 // One eigenvalue of G (for a complex pair, the one with positive imaginary part).
 struct Mode {
+  // lambda (1/s)
   std::complex<double> eigenvalue;
   double omega_n = 0;        // |lambda| (rad/s)
   double omega_d = 0;        // |Im lambda| (rad/s)
@@ -151,9 +161,13 @@ std::vector<Mode> vibration_modes(const StateSpace& ss);
 // Node displacements of a mode scaled so that the largest node moves by `amplitude` (m): (label
 // "body.node", dx, dy) for every node of every body (ground excluded).
 struct NodeShape {
+  // "body.node"
   std::string label;
+  // displacement of the node (m)
   double dx = 0, dy = 0;
 };
+// The NodeShape of every node of every body for `mode`, scaled so that the largest moves by
+// `amplitude` (m).
 std::vector<NodeShape> mode_node_shapes(const Model& m, const Mode& mode, double amplitude);
 // dz of a mode scaled so that the largest node displacement is `amplitude` (m).
 Eigen::VectorXd mode_step(const Model& m, const Mode& mode, double amplitude);

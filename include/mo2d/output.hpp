@@ -17,6 +17,7 @@
 
 namespace mo2d {
 
+// A set of output files written together or not at all (see the file's description).
 class OutputSet {
  public:
   OutputSet() = default;
@@ -36,6 +37,7 @@ class OutputSet {
   // Routes the files mo2d writes to `set` while alive (one per thread; nested scopes stack).
   class Scope {
    public:
+    // Routes mo2d's file writes of this thread to `set` until destroyed.
     explicit Scope(OutputSet& set);
     ~Scope();
     Scope(const Scope&) = delete;

@@ -26,12 +26,15 @@
 
 namespace mo2d {
 
+// The optional columns of a run's CSV (Trajectory::outputs): load values and powers, centres of
+// mass, named points.
 struct OutputRequest {
   bool loads = false;  // every force, torque, spring and torsional spring
   bool com = false;    // every body's centre of mass
   // Named points (Model::points) by name; all_points: every named point of the model.
   std::vector<std::string> points{};
   bool all_points = false;
+  // Whether nothing is requested.
   bool empty() const { return !loads && !com && points.empty() && !all_points; }
 };
 

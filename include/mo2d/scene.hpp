@@ -21,7 +21,9 @@ namespace mo2d {
 
 // Where something was written: 1-based line and column (0 = unknown).
 struct Location {
+  // the scene file's path as given
   std::string file{};
+  // 1-based line and column (0: unknown)
   int line = 0, column = 0;
   std::string str() const;  // "file:line:column" (or "file" when the line is unknown)
 };
@@ -29,8 +31,11 @@ struct Location {
 // An error in a scene: what() is "file:line:column: message".
 class SceneError : public Error {
  public:
+  // The error `message` at `where`.
   SceneError(const Location& where, const std::string& message);
+  // Where the error is in the scene.
   const Location& where() const { return where_; }
+  // The message without the location.
   const std::string& message() const { return message_; }
 
  private:
@@ -38,14 +43,21 @@ class SceneError : public Error {
   std::string message_{};
 };
 
+// What a scene's run computes: inverse dynamics (a prescribed motion) or forward dynamics (the
+// motion from the efforts).
 enum class Solve { inverse, forward };
 
+// A scene's `run:` block (docs/scene-format.md, "run"): what to solve, over which times, with which
+// integrator, budgets and outputs.
 struct RunSettings {
+  // inverse or forward dynamics
   Solve solve = Solve::inverse;
+  // start time (s)
   double t0 = 0;
   double duration = 1;       // s; t1 = t0 + duration
   int samples = 0;           // 0: 501 (inverse) or 101 (forward)
   double tolerance = 1e-12;  // inverse: position tolerance |psi|_inf relative to the model size
+  // forward: the integrator and the equations of the accelerations (ForwardOptions)
   Integrator integrator = Integrator::cvode_bdf;
   Formulation formulation = Formulation::augmented_lagrangian;
   LinearAlgebra linear_algebra = LinearAlgebra::automatic;  // forward: dense or sparse matrices
@@ -63,8 +75,11 @@ struct RunSettings {
 // A label written in the scene (prescribed coordinate, initial value, effort) with its place, so
 // that a label the model does not have is reported at the line that wrote it.
 struct LabelUse {
+  // the label as written
   std::string label{};
+  // what the label names: a coordinate, a quasi-velocity (rate) or an input
   enum class Kind { coordinate, rate, input } kind = Kind::coordinate;
+  // where it was written
   Location where{};
 };
 
@@ -74,30 +89,42 @@ struct SceneController {
   std::string input{};                // input label ("crank_pivot.torque")
   PdControl control{};                // its feed_forward: the expression given, if any
   bool feed_forward_inverse = false;  // feed-forward from inverse dynamics of the references
+  // where the controller was written
   Location where{};
 };
 
 // A label read by the expression of an element (a constraint), with the instance prefixes.
 struct ExpressionLabel {
+  // the label read
   std::string label{};
+  // the element whose expression reads it
   std::string element{};
+  // where it was written
   Location where{};
 };
 
+// A scene file (docs/scene-format.md) read by load_scene(): the mechanism as a System, the run
+// (motion or initial conditions, efforts, controllers, settings), the requested outputs and where
+// every element was written.
 struct Scene {
+  // the file's path
   std::string file{};
+  // the scene's name (its `name:`; the prefix of the output files)
   std::string name{};
   std::vector<std::pair<std::string, double>> parameters{};  // in dependency order, evaluated
+  // the mechanism
   System system{};
   std::vector<Prescribed> motion{};  // inverse: one per DOF
   InitialConditions initial{};       // forward
   // forward: input label -> effort law (of t, or of t and the state: a feedback)
   std::vector<std::pair<std::string, Law>> efforts{};
   std::vector<SceneController> controllers{};  // forward: feedback efforts
+  // the `run:` block
   RunSettings run{};
   // `outputs:` the columns mo2d inverse / forward add to the CSV (add_output_columns): every
   // named point unless told otherwise, loads and centres of mass when asked.
   OutputRequest outputs{.all_points = true};
+  // every label the scene writes, with its place (checked by build_scene_model)
   std::vector<LabelUse> labels{};
   // element name -> definition (run keys as "run.t0", "run.step", ...)
   std::vector<std::pair<std::string, Location>> elements{};
@@ -110,7 +137,9 @@ struct Scene {
 
 // A parameter override "name=value" (value: an expression of the other parameters).
 struct ParameterOverride {
+  // the parameter's name
   std::string name{};
+  // its new value: an expression of the other parameters
   std::string value{};
 };
 ParameterOverride parse_override(std::string_view name_equals_value);  // throws Error
@@ -122,9 +151,12 @@ ParameterOverride parse_override(std::string_view name_equals_value);  // throws
 // flag: "--max-steps: run.max_steps: must be >= 1"), and so are the later refusals of
 // check_scene_options for that key.
 struct RunOverride {
+  // the run key ("step", "max_steps", ...)
   std::string key{};
+  // its value as text
   std::string value{};
 };
+// The keys of `run:` a RunOverride may set.
 inline constexpr const char* kRunOverrideKeys[] = {
     "t0",   "duration", "samples",   "tolerance",   "integrator", "formulation",    "rtol",
     "atol", "step",     "max_steps", "max_seconds", "max_memory", "linear_algebra", "accuracy"};
@@ -155,9 +187,12 @@ void check_scene_options(const Scene& scene, const Model& model, const ForwardOp
 // Tracking error e = x - r of each controller over a forward run of the scene's model: the
 // signed error of largest |e| and its time, and e at the last sample (rad or m).
 struct TrackingError {
+  // the controlled input's label and the label of its coordinate
   std::string input, coordinate;
+  // the largest error (signed; rad or m), its time (s), and the error at the last sample
   double max_error = 0, t_max = 0, final_error = 0;
 };
+// The TrackingError of every controller of the scene over the forward run r.
 std::vector<TrackingError> tracking_errors(const Scene& scene, const Model& model,
                                            const Trajectory& r);
 // Consistent initial state of a forward run (consistent_state with the scene's initial values).

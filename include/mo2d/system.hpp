@@ -29,9 +29,12 @@
 
 namespace mo2d {
 
+// A point or vector of the plane (m for a point).
 using Vec2 = Eigen::Vector2d;
 
+// A node: a named point of a body or of the ground.
 struct NodeDef {
+  // name, local to its body (or to the ground)
   std::string name{};
   // Coordinates in the initial configuration, in the System's own frame. For a body without a
   // shape (BodyDef::shape empty) and for a ground node they are exact: they define the body's
@@ -45,16 +48,21 @@ struct NodeDef {
 // Centre of mass: Example 2.6 (b) r(b*|b_i) = gamma r(b_j|b_i) + rho z x r(b_j|b_i), or a point
 // (converted to gamma, rho on the body's first two nodes), or a node.
 struct CenterOfMass {
+  // how the centre of mass is given: at a node, between two nodes (gamma, rho) or at a point
   enum class Kind { node, nodes, point } kind = Kind::node;
   std::string node_i{}, node_j{};  // node names local to the body
+  // Example 2.6 (b): the fraction gamma along node_i -> node_j and rho across it (dimensionless)
   double gamma = 0, rho = 0;
+  // the point (m), in the System's frame (or the body's frame for a body given by its shape)
   Vec2 point{0, 0};
+  // The centre of mass at node `node`.
   static CenterOfMass at_node(std::string node) {
     CenterOfMass c;
     c.kind = Kind::node;
     c.node_i = std::move(node);
     return c;
   }
+  // The centre of mass at gamma (along) and rho (across) of node_i -> node_j (Example 2.6 (b)).
   static CenterOfMass between(std::string node_i, std::string node_j, double gamma,
                               double rho = 0) {
     CenterOfMass c;
@@ -65,6 +73,7 @@ struct CenterOfMass {
     c.rho = rho;
     return c;
   }
+  // The centre of mass at point p (m).
   static CenterOfMass at_point(Vec2 p) {
     CenterOfMass c;
     c.kind = Kind::point;
@@ -73,7 +82,10 @@ struct CenterOfMass {
   }
 };
 
+// A rigid body (Orsino 2016 Example 2.6): its nodes, optional shape, mass, inertia and centre of
+// mass.
 struct BodyDef {
+  // name, unique in its System
   std::string name{};
   // The body's nodes, with their positions in the System's frame: exact without a shape, a sketch
   // with one. One node: a point mass (with a rotation only if inertia > 0).
@@ -95,23 +107,36 @@ struct BodyDef {
   std::optional<CenterOfMass> com{};  // default: the first node
 };
 
+// A revolute joint: node_a of body 1 and node_b of body 2 coincide (Orsino 2016 eq. 5.27);
+// optionally actuated by a torque.
 struct RevoluteDef {
+  // name, unique in its System (prefix of its input and reaction labels)
   std::string name{};
+  // the two joined nodes
   std::string node_a{},
       node_b{};           // "body.node" or "ground.node"; node_b's variables are eliminated
   bool actuated = false;  // adds the input "name.torque"
 };
 
+// A prismatic joint: the slider node of body 2 slides on the axis axis_from -> axis_to of body 1
+// and the relative rotation is locked (Orsino 2016 eq. 5.30, 5.31 corrected); coordinate "name.q"
+// (m).
 struct PrismaticDef {
+  // name, unique in its System
   std::string name{};
   std::string axis_from{}, axis_to{};  // two nodes of body 1 ("ground.node" allowed)
   std::string slider{};                // node of body 2
   bool actuated = false;               // adds the input "name.force"
 };
 
+// A pin-in-slot joint: the pin node of body 2 slides on the axis axis_from -> axis_to of body 1 and
+// turns freely (eq. 5.31 corrected without the rotation lock); coordinate "name.q" (m).
 struct PinInSlotDef {
+  // name, unique in its System
   std::string name{};
+  // two nodes of body 1, the slot's axis ("ground.node" allowed)
   std::string axis_from{}, axis_to{};
+  // node of body 2 in the slot
   std::string pin{};
   bool actuated_slide = false;     // input "name.force"
   bool actuated_rotation = false;  // input "name.torque" (between the two bodies)
@@ -121,15 +146,19 @@ struct PinInSlotDef {
 // quasi-velocity labels such as "crank.w" (body rotation rate), "slide.v", "crank.A.vx".
 // Rates of coordinates and body rotations with integer weights give an exact position invariant.
 struct CoordinateDef {
+  // name of the coordinate (its label)
   std::string name{};
+  // (quasi-velocity label, weight c_k) pairs of its rate
   std::vector<std::pair<std::string, double>> rate{};
   std::optional<double> initial{};  // default: the value implied by the initial configuration
 };
 
 // User constraint at position level: psi(x, t) = 0, x = the coordinates named in args.
 struct PositionConstraintDef {
+  // name, unique in its System (label of its multiplier "name.lambda")
   std::string name{};
   std::vector<std::string> args{};  // coordinate labels ("crank.A.x", "slide.q", "crank.angle")
+  // psi(x, t), in the unit of the constraint (evaluated on Jets: exact derivatives)
   std::function<Jet(std::span<const Jet> x, Jet t)> psi{};
 };
 
@@ -141,11 +170,14 @@ struct PositionConstraintDef {
 //    build_model sorts each label into a coordinate or a quasi-velocity (the form scene files use).
 // build_model refuses a g that is not linear in the rates at the initial configuration.
 struct VelocityConstraintDef {
+  // name, unique in its System (label of its multiplier "name.lambda")
   std::string name{};
   std::vector<std::string> coords{};  // coordinate labels the coefficients depend on
   std::vector<std::string> rates{};   // quasi-velocity labels it is linear in
+  // g(x, v, t), linear in v (first form)
   std::function<Jet(std::span<const Jet> x, std::span<const Jet> v, Jet t)> g{};
   std::vector<std::string> labels{};  // coordinate and quasi-velocity labels, sorted by build_model
+  // g_labels(a, t) (second form)
   std::function<Jet(std::span<const Jet> a, Jet t)> g_labels{};
 };
 
@@ -157,6 +189,7 @@ struct VelocityConstraintDef {
 // reactions "name.torque" (the mesh torque on j; -ratio times it acts on k) and
 // "name.carrier_torque" (the mesh torque on the carrier, -(1 - ratio) name.torque).
 struct GearDef {
+  // name, unique in its System
   std::string name{};
   std::string body{};             // driven body j
   std::string driver{};           // driving body k
@@ -171,6 +204,7 @@ struct GearDef {
 // "name.phi" (the pinion angle relative to c, unwrapped) and the reaction "name.force" (the
 // force on the rack along the axis; -radius times it acts on the pinion).
 struct RackDef {
+  // name, unique in its System
   std::string name{};
   std::string slide{};   // a prismatic or pin-in-slot joint of this System
   std::string pinion{};  // body with two nodes
@@ -182,13 +216,19 @@ struct RackDef {
 // time, or of time and the state ("crank.theta", "crank.w"); the force's components are in the
 // System's frame (rotated with its instance).
 struct ForceDef {
+  // name, unique in its System
   std::string name{};
+  // the body the force acts on
   std::string body{};
+  // the point of application (m), in the System's frame at the initial configuration
   Vec2 point{0, 0};
   Law fx{}, fy{};  // N; empty = 0
 };
+// A pure torque on a body (see ForceDef).
 struct TorqueDef {
+  // name, unique in its System
   std::string name{};
+  // the body the torque acts on
   std::string body{};
   Law torque{};  // N m, counter-clockwise on the body; empty = 0
 };
@@ -217,16 +257,23 @@ enum class SpringReduce { none, constraint };
 // l < rest_length; compression_only gives min(T, 0), and a linear one acts only while
 // l < rest_length (a bump stop).
 struct SpringDef {
+  // name, unique in its System
   std::string name{};
+  // body of the first point ("ground" allowed)
   std::string body_a{};
+  // first point (m), in the System's frame at the initial configuration
   Vec2 point_a{0, 0};
+  // body of the second point ("ground" allowed)
   std::string body_b{};
+  // second point (m), in the System's frame at the initial configuration
   Vec2 point_b{0, 0};
   double rest_length = 0;  // m (>= 0)
   double stiffness = 0;    // N/m (>= 0); with a tension law: must be 0
   double damping = 0;      // N s/m (>= 0); with a tension law: must be 0
   Law tension{};           // N; empty: the linear law above
+  // which sign of tension it carries
   SpringActs acts = SpringActs::both;
+  // as written, or reduced to a constraint
   SpringReduce reduce = SpringReduce::none;
 };
 
@@ -251,16 +298,21 @@ enum class ChainFidelity { unilateral, bilateral };
 // T = k (l - rest) + c dl/dt acts at the material tangent points along the span (power
 // -T dl/dt). A counter-clockwise turn of sprocket a tightens the upper span.
 struct ChainDef {
+  // name, unique in its System
   std::string name{};
+  // body of sprocket a ("ground" allowed)
   std::string body_a{};
   Vec2 centre_a{0, 0};  // in the System's frame at the initial configuration
   double radius_a = 0;  // m, > 0 (pitch radius)
+  // body of sprocket b ("ground" allowed)
   std::string body_b{};
+  // in the System's frame at the initial configuration
   Vec2 centre_b{0, 0};
   double radius_b = 0;   // m, > 0; the pitch circles may not overlap (|c_b - c_a| > r_a + r_b)
   double stiffness = 0;  // N/m per span (> 0)
   double damping = 0;    // N s/m per span (>= 0)
   std::optional<double> rest_upper{}, rest_lower{};  // m (> 0); default: the initial span length
+  // spans that only pull, or bilateral springs
   ChainFidelity fidelity = ChainFidelity::unilateral;
 };
 
@@ -269,6 +321,7 @@ struct ChainDef {
 // or any law: torque = torque(...), a Law that may read "angle" (theta - rest, within +-pi) and
 // "rate" (w2 - w1) besides any state quantity (its work is counted as load work).
 struct TorsionalSpringDef {
+  // name, unique in its System
   std::string name{};
   std::string joint{};           // a revolute joint of this System
   double stiffness = 0;          // N m / rad; with a torque law: must be 0
@@ -288,6 +341,7 @@ struct TorsionalSpringDef {
 // together by a fixed-point iteration per sample (Orsino Example 4.5). Forward dynamics:
 // sgn(v) = tanh(v / regularization), iterated with the reaction at the current accelerations.
 struct FrictionDef {
+  // name, unique in its System
   std::string name{};
   std::string joint{};           // a revolute, prismatic or pin-in-slot joint of this System
   double viscous = 0;            // N s / m (slide) or N m s / rad (revolute)
@@ -300,30 +354,49 @@ struct FrictionDef {
 // configuration: its position and velocity are quantities laws may read ("name.x", "name.vy")
 // and outputs of every run.
 struct PointDef {
+  // name, unique in its System (prefix of its quantities "name.x", "name.vy", ...)
   std::string name{};
+  // the body it is fixed in ("ground" allowed)
   std::string body{};
+  // the point (m), in the System's frame at the initial configuration
   Vec2 point{0, 0};
 };
 
+// Where an instance of a subsystem goes in its parent: rotated by `angle`, then shifted by
+// `offset`.
 struct Placement {
+  // shift (m)
   Vec2 offset{0, 0};
   double angle = 0;  // rad, applied before the offset
+  // The point p of the subsystem's frame in the parent's frame (m).
   Vec2 apply(const Vec2& p) const;
+  // An angle a of the subsystem's frame in the parent's frame (rad).
   double rotate_angle(double a) const { return a + angle; }
 };
 
 class System;
 
+// A subsystem placed in a System (Orsino 2016 Theorem 2.10, the tree of subsystems).
 struct Instance {
+  // the instance's name (prefix of its labels: "name.body.node")
   std::string name{};
+  // the subsystem, shared between its instances
   std::shared_ptr<const System> system{};
+  // where it goes
   Placement placement{};
 };
 
+// A mechanism or a subsystem as written (see the file's description): definitions added one by one,
+// then compiled by build_model().
 class System {
  public:
+  // An empty System named `name` (the root of a mechanism: "root").
   explicit System(std::string name = "root") : name_(std::move(name)) {}
 
+  // Adds a ground node, body, joint, coordinate, gear, rack, constraint, load, spring, chain, named
+  // point, friction or subsystem instance (its Def struct describes it) and returns *this;
+  // build_model checks names and references. set_gravity: the gravity vector (m/s^2), default (0,
+  // 0): none.
   System& add_ground_node(std::string name, Vec2 position);
   System& add_body(BodyDef body);
   System& add_revolute(RevoluteDef joint);
@@ -344,6 +417,7 @@ class System {
   System& add_instance(std::string name, const System& sub, Placement placement = {});
   System& set_gravity(Vec2 g);
 
+  // The System's name and its definitions, in the order added.
   const std::string& name() const { return name_; }
   const std::vector<NodeDef>& ground() const { return ground_; }
   const std::vector<BodyDef>& bodies() const { return bodies_; }

@@ -21,17 +21,23 @@
 
 namespace mo2d {
 
+// How a table interpolates between its points (see the file's description).
 enum class Interpolation { cubic, linear };
 
 // Beyond the ends: an Error naming the table, x and the range (error); the end value with zero
 // derivatives (clamp); the data repeated with period x_max - x_min (periodic).
 enum class Extrapolation { error, clamp, periodic };
 
+// How a LookupTable interpolates and extrapolates.
 struct TableOptions {
+  // cubic spline (default) or polyline
   Interpolation interpolation = Interpolation::cubic;
+  // what happens beyond the first and last x
   Extrapolation extrapolation = Extrapolation::error;
 };
 
+// A table y(x) interpolated between its points and evaluated on a Jet (exact derivatives of the
+// interpolant); x and y in the units of what it tabulates.
 class LookupTable {
  public:
   // At least 2 points, x strictly increasing, every value finite; periodic: y.back() == y.front()
@@ -44,13 +50,18 @@ class LookupTable {
   // {S(x), S'(x) x', S''(x) x'^2 + S'(x) x''}. x beyond the range by more than round-off
   // (1e-12 of the range's scale) with extrapolation error, or a non-finite x, throws Error.
   Jet operator()(Jet x) const;
+  // The interpolated value at x.
   double operator()(double x) const { return (*this)(Jet(x)).v; }
 
+  // The table's name (in its error messages).
   const std::string& name() const { return name_; }
+  // The points' x values (increasing) and y values.
   std::span<const double> x() const { return x_; }
   std::span<const double> y() const { return y_; }
+  // The range of x covered by the points.
   double x_min() const { return x_.front(); }
   double x_max() const { return x_.back(); }
+  // The interpolation and extrapolation.
   const TableOptions& options() const { return options_; }
 
  private:
@@ -68,8 +79,11 @@ class LookupTable {
 // Columns of a CSV file for read_table_csv: header names (empty: the first, the second column),
 // and factors applied to the values read (x_table = scale_x * x_file; scale_x > 0).
 struct CsvColumns {
+  // header name of the x column
   std::string x{};
+  // header name of the y column
   std::string y{};
+  // factors applied to the x and y values read
   double scale_x = 1, scale_y = 1;
 };
 

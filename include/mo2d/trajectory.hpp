@@ -10,12 +10,15 @@
 
 namespace mo2d {
 
+// The kind of a run: inverse or forward dynamics.
 enum class RunKind { inverse, forward };
+// "inverse" or "forward".
 const char* to_string(RunKind k);
 
 // Statistics of a run. cpu_seconds and warnings for both kinds; the rest for forward runs only
 // (zero, or their initial values, for an inverse run).
 struct RunStats {
+  // CPU time of the run (s)
   double cpu_seconds = 0;
   // Singular configurations passed or approached, jumps between assembly modes (inverse), drift
   // of an integrator that does not project (forward): each with the time and the variables.
@@ -32,7 +35,11 @@ struct RunStats {
   bool sparse = false;               // forward runs: the sparse linear algebra was used
 };
 
+// The result of a run (inverse_dynamics or forward_dynamics), one row per sample: the state,
+// efforts, reactions, residuals, energies, requested outputs and statistics. Units SI (m, rad, s,
+// N, N m, J).
 struct Trajectory {
+  // inverse or forward dynamics
   RunKind kind = RunKind::inverse;
   // Column labels: Model::coordinate_labels (q0), Model::rate_labels (q1, a1; a1's are written
   // label + ".dot"), Model::input_labels() (efforts), Model::reaction_labels() (reactions), and
@@ -53,6 +60,7 @@ struct Trajectory {
   // (B u . q1), of the applied forces and torques, of time-dependent constraints, and the energy
   // dissipated by the dampers (>= 0). energy_balance (mo2d/forward.hpp) combines them.
   Eigen::VectorXd kinetic, potential, input_work, load_work, constraint_work, dissipated;
+  // Whether the energies are recorded (forward runs).
   bool has_energies() const { return kind == RunKind::forward; }
 
   // Columns added on request after the run (add_output_columns, mo2d/output_columns.hpp): loads'
@@ -60,6 +68,7 @@ struct Trajectory {
   std::vector<std::string> output_labels;
   Eigen::MatrixXd outputs;  // samples x output_labels
 
+  // statistics of the run
   RunStats stats;
 
   // Column of a label in q0 (coordinate), q1 and a1 (quasi-velocity), efforts (input, e.g.

@@ -32,6 +32,7 @@
 
 namespace mo2d {
 
+// One shaft of a gear train in its housing (the full model of the file's description).
 struct TransmissionShaft {
   double mass = 0;     // kg (>= 0), centre of mass on the axis
   double inertia = 0;  // kg m^2 about its axis (>= 0)
@@ -39,12 +40,15 @@ struct TransmissionShaft {
   double ratio = 1;    // rho_k = (omega_k - omega_c) / (omega_ref - omega_c); the reference: 1
 };
 
+// The housing of a gear train: its own mass data in its frame.
 struct TransmissionHousing {
   double mass = 0;     // kg (> 0 for the lumped housing to carry the spread)
   Vec2 com{0, 0};      // centre of mass in the housing's frame (m)
   double inertia = 0;  // kg m^2 about the centre of mass
 };
 
+// The lumped equivalent of a gear train (Gamba 2009 eq. 1.37-1.42): the housing R~ and the two
+// counter-rotating shafts A and B.
 struct LumpedTransmission {
   TransmissionHousing housing;          // R~: m_r, p_r, I_r + sum m_k |h_k - h~|^2
   Vec2 axis{0, 0};                      // h~, the common axis of A and B (housing frame)

@@ -37,11 +37,14 @@ struct Motion {
   // FrameOptions::show_loads may depend on (motion_of fills them)
   Eigen::MatrixXd q1{};
 };
+// The Motion of a run: its times, coordinates, efforts and quasi-velocities.
 Motion motion_of(const Trajectory& r);
 // One configuration (e.g. Model::q0) at time t, without efforts.
 Motion single_configuration(const Eigen::VectorXd& q0, double t = 0);
 
+// Colours and sizes of a frame (docs/rendering.md, "Frames").
 struct FrameStyle {
+  // image background
   Rgb background = rgb_hex(0xFFFFFF);
   Rgb ink = rgb_hex(0x222222);         // joints, symbols, text
   Rgb joint_fill = rgb_hex(0xFFFFFF);  // inside of revolute joint circles and pins
@@ -57,10 +60,12 @@ struct FrameStyle {
   double com_radius = 3.2;      // centre-of-mass symbol
   double effort_radius = 13.0;  // radius of the torque arcs
   double effort_length = 34.0;  // length of a force arrow at the run's peak force
+  // text size (points) and font family
   double font_size = 9.0;
   std::string font = "DejaVu Sans";
 };
 
+// What a frame shows and at which size (docs/rendering.md: the table of FrameOptions).
 struct FrameOptions {
   int width = 800, height = 600;  // pixels
   double dpi = 96;                // pixels per inch (sizes in FrameStyle are in points)
@@ -71,6 +76,7 @@ struct FrameOptions {
   bool show_com = true;
   bool show_efforts = true;
   bool show_effort_values = true;  // the values in the top-right corner (tau = ... N m)
+  // time stamp, scale bar and x-y axes
   bool show_time = true;
   bool show_scale_bar = true;
   bool show_axes = true;
@@ -92,6 +98,7 @@ struct View {
   Eigen::Vector2d centre{0, 0};  // world point drawn at the image centre
   double width = 0, height = 0;  // image size in pixels
 };
+// The pixel (x right, y down) of a world point (m, y up).
 Eigen::Vector2d to_pixel(const View& view, const Eigen::Vector2d& world);
 // The view of a run: fits every sample (or FrameOptions::window). Throws Error for an empty run,
 // a non-finite coordinate (naming it and the time), a size that is not positive.
@@ -113,14 +120,17 @@ std::vector<std::string> write_frames(const Model& model, const Motion& motion,
 // listed `samples`, drawn side by side in `columns` columns (0: one row; default 3), every tile
 // with the same view.
 struct FilmstripOptions {
+  // number of tiles, equally spaced samples
   int frames = 6;
   std::vector<int> samples{};  // these samples instead (then `frames` is ignored)
+  // tiles per row (0: one row)
   int columns = 3;
   double gap = 4;           // points between tiles
   bool tile_border = true;  // a thin frame around every tile
   // Size of one tile (default 360 x 270 px) and what it shows (scale bar and axes: first tile).
   FrameOptions tile{.width = 360, .height = 270};
 };
+// The filmstrip as an image in memory.
 Image render_filmstrip(const Model& model, const Motion& motion, const FilmstripOptions& options);
 // .png, .svg or .pdf by extension (atomic write).
 void write_filmstrip(const Model& model, const Motion& motion, const FilmstripOptions& options,

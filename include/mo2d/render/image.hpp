@@ -8,6 +8,7 @@
 
 namespace mo2d {
 
+// A colour: red, green, blue in 0..1.
 struct Rgb {
   double r = 0, g = 0, b = 0;  // 0..1
 };
@@ -19,8 +20,11 @@ const std::vector<Rgb>& okabe_ito();
 
 // An opaque image, row-major, one 0xAARRGGBB word per pixel (alpha always 0xFF).
 struct Image {
+  // size in pixels
   int width = 0, height = 0;
+  // width x height pixels, row by row from the top left
   std::vector<std::uint32_t> argb{};
+  // The pixel at column x, row y (0-based, from the top left).
   std::uint32_t at(int x, int y) const { return argb[static_cast<size_t>(y) * width + x]; }
 };
 // 0xRRGGBB part of a pixel.

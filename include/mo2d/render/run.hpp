@@ -11,25 +11,34 @@
 
 namespace mo2d {
 
+// What render_run() draws and where (the `mo2d render` command's settings).
 struct RenderJob {
   std::string dir = "out";     // created if missing
   std::string name = "run";    // file name prefix
   std::string format = "png";  // filmstrip and plots: png, svg or pdf (frames are always PNG)
   bool frames = false;         // DIR/NAME_0001.png ... every `every` samples
+  // frame stride, in samples
   int every = 10;
   bool filmstrip = true;  // DIR/NAME_filmstrip.FORMAT
+  // tiles and size of the filmstrip
   FilmstripOptions filmstrip_options{};
   bool plots = true;   // inverse: efforts, residuals; forward: energies, residuals
   bool video = false;  // DIR/NAME.mp4 from the frames, only if ffmpeg is on PATH
+  // frames per second of the video
   double fps = 25;
   FrameOptions frame{};  // frames (and the video)
+  // size of the plots (pixels) and their resolution (dpi)
   int plot_width = 800, plot_height = 450;
   double plot_dpi = 96;
 };
 
+// The paths render_run() wrote.
 struct RenderOutputs {
+  // DIR/NAME_0001.png, ... in order
   std::vector<std::string> frames{};
+  // the filmstrip's path (empty: none)
   std::string filmstrip{};
+  // the plots' paths
   std::vector<std::string> plots{};
   std::string video{};               // empty if not asked for or ffmpeg is missing
   std::vector<std::string> notes{};  // e.g. "ffmpeg not found: no video"
