@@ -10,6 +10,7 @@
 // eliminate the slave body's rotation rate (eq. 5.30).
 #include <Eigen/Core>
 #include <functional>
+#include <memory>
 #include <span>
 #include <string>
 #include <unordered_map>
@@ -249,9 +250,12 @@ struct SpringLoad {
 // position constraint |p_b - p_a| - spring.rest_length = 0, m.constraints[constraint], whose
 // multiplier is the tension, m.reactions[reaction] ("name.tension"). `spring` is the load it
 // replaces (not applied; its stiffness, damping or law are read by the fidelity report).
+// With reduce: quasi_steady the constraint holds *held_length instead (the quasi-steady length,
+// updated by forward runs at every projection: src/forward/quasi_steady.cpp).
 struct ReducedSpring {
   SpringLoad spring;
   int constraint = -1, reaction = -1;
+  std::shared_ptr<double> held_length{};  // quasi_steady: the length psi holds; else null
 };
 struct TorsionalLoad {
   std::string name;
