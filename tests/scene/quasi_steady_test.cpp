@@ -298,6 +298,17 @@ TEST(QuasiSteady, BadInputIsRefusedByName) {
         [](ForwardOptions& o) { o.integrator = Integrator::cvode_bdf; });
   });
   EXPECT_NE(e.find("not cvode_bdf"), std::string::npos) << e;
+  // a chain: not written yet, refused at its fidelity key
+  std::ifstream in(std::string(MO2D_MECHANISMS_DIR) + "/chain_drive.yaml");
+  std::stringstream chain;
+  chain << in.rdbuf();
+  text = chain.str();
+  text.replace(text.find("fidelity: unilateral}"), 20, "fidelity: quasi_steady");
+  e = error_of([&] { parse_scene(text, "chain.yaml"); });
+  EXPECT_NE(e.find("chain.yaml:52:"), std::string::npos) << e;
+  EXPECT_NE(e.find("chain 'chain'.fidelity: quasi_steady is not written yet for chains"),
+            std::string::npos)
+      << e;
   // a law without an equilibrium length for the tension: T = 0.001 atan2(extension, 1) saturates
   e = error_of([&] { run(pendulum("quasi_steady", "0.001 * atan2(extension, 1)")); });
   EXPECT_NE(e.find("spring 's' (reduce: quasi_steady): no equilibrium length"), std::string::npos)
