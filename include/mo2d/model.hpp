@@ -250,12 +250,13 @@ struct SpringLoad {
 // position constraint |p_b - p_a| - spring.rest_length = 0, m.constraints[constraint], whose
 // multiplier is the tension, m.reactions[reaction] ("name.tension"). `spring` is the load it
 // replaces (not applied; its stiffness, damping or law are read by the fidelity report).
-// With reduce: quasi_steady the constraint holds *held_length instead (the quasi-steady length,
-// updated by forward runs at every projection: src/forward/quasi_steady.cpp).
+// With reduce: quasi_steady the constraint holds the length of a HeldLength cell instead (the
+// quasi-steady length, settled by forward runs at every projection: mo2d/quasi_steady.hpp).
 struct ReducedSpring {
   SpringLoad spring;
   int constraint = -1, reaction = -1;
-  std::shared_ptr<double> held_length{};  // quasi_steady: the length psi holds; else null
+  // quasi_steady: points at the cell's first member (HeldLength::length, held_of); else null
+  std::shared_ptr<double> held_length{};
 };
 struct TorsionalLoad {
   std::string name;
