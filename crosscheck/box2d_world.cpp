@@ -125,8 +125,12 @@ Box2DWorld build_box2d_world(const Model& m, const Eigen::VectorXd& q0, const Ei
   for (const SpringLoad& s : m.springs) refuse("spring '" + s.name + "' is not translated", s.name);
   for (const ReducedSpring& s : m.reduced_springs)  // before its user position constraint
     refuse("spring '" + s.spring.name +
-               "' reduced to a constraint is not translated (Box2D's distance joint with "
-               "min = max = rest length would be its equivalent; not mapped yet)",
+               (s.held_length ? "' reduced to its quasi-steady state (reduce: quasi_steady) is "
+                                "not translated (Box2D has no joint whose length follows its "
+                                "multiplier)"
+                              : "' reduced to a constraint is not translated (Box2D's distance "
+                                "joint with min = max = rest length would be its equivalent; "
+                                "not mapped yet)"),
            s.spring.name);
   for (const PointLoad& f : m.forces)
     if (!f.fx.args.empty() || !f.fy.args.empty())

@@ -153,7 +153,10 @@ struct ForwardData {
   // In regular directions each iteration divides the residual by ~alpha sigma^2 / m (~1e7); in a
   // direction where the Jacobian loses rank (sigma -> 0) the correction vanishes instead of
   // blowing up as 1/sigma, so a state near a singular position is not thrown onto another branch.
+  // With quasi-steady springs (mo2d/quasi_steady.hpp) the lengths they hold are settled too.
   void project(double t, VectorXd& q0, VectorXd& q1, double tol_pos, double tol_vel);
+  // The projection with the quasi-steady springs' lengths held as they are.
+  void project_held(double t, VectorXd& q0, VectorXd& q1, double tol_pos, double tol_vel);
   // Reactions of a recorded state with accelerations `a` (least-squares multipliers of
   // A^T lambda = B u - (M a - f); regularized where A loses rank).
   void compute_reactions(double t, const VectorXd& q0, const VectorXd& q1);
@@ -181,6 +184,7 @@ struct ForwardData {
   std::unique_ptr<detail::SparseEngine> sparse_;
   std::unique_ptr<detail::SmallLU> lu_kkt_, lu_K_, lu_G1_;  // of KKT, K and G1
   std::vector<detail::SlotEntry> entries_;  // reactions: A entries attributed to body slots
+  bool quasi_steady_ = false;               // the model has quasi-steady springs
 
   void inputs(double t, const VectorXd& q0, const VectorXd& q1);
   void set_inputs(const VectorXd& efforts, double t);

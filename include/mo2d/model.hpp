@@ -10,6 +10,7 @@
 // eliminate the slave body's rotation rate (eq. 5.30).
 #include <Eigen/Core>
 #include <functional>
+#include <memory>
 #include <span>
 #include <string>
 #include <unordered_map>
@@ -318,11 +319,15 @@ struct SpringLoad {
 // position constraint |p_b - p_a| - spring.rest_length = 0, m.constraints[constraint], whose
 // multiplier is the tension, m.reactions[reaction] ("name.tension"). `spring` is the load it
 // replaces (not applied; its stiffness, damping or law are read by the fidelity report).
+// With reduce: quasi_steady the constraint holds the length of a HeldLength cell instead (the
+// quasi-steady length, settled by forward runs at every projection: mo2d/quasi_steady.hpp).
 struct ReducedSpring {
   // the spring it replaces (not applied)
   SpringLoad spring;
   // index of its constraint in Model::constraints and of its reaction in Model::reactions
   int constraint = -1, reaction = -1;
+  // quasi_steady: points at the cell's first member (HeldLength::length, held_of); else null
+  std::shared_ptr<double> held_length{};
 };
 // A torsional spring-damper of the compiled model (TorsionalSpringDef).
 struct TorsionalLoad {

@@ -246,7 +246,14 @@ enum class SpringActs { both, tension_only, compression_only };
 //    stiffness and damping are not used by the dynamics (the fidelity report still reads them).
 //    A unilateral spring stays bilateral: a tension of the wrong sign (a rope that would go
 //    slack) is a run warning naming the time.
-enum class SpringReduce { none, constraint };
+//  - quasi_steady: the quasi-steady-state model (Gamba 2009, 2.3): the same row (the multiplier
+//    the tension T) but the length held is the spring's equilibrium length under T, the l at
+//    which its own law at zero rate gives T (l = rest_length + T / k when linear, Newton on a
+//    tension law), settled at every projection of forward runs and extrapolated linearly between
+//    them (mo2d/quasi_steady.hpp). Needs stiffness > 0 or a tension law; forward runs with an
+//    explicit integrator that projects only (dopri5, rk4, erk6, erk8). A Model with such springs
+//    holds their current lengths: one forward run at a time per Model object.
+enum class SpringReduce { none, constraint, quasi_steady };
 
 // A spring-damper between two points fixed in bodies ("ground" allowed), given in the System's
 // frame at the initial configuration. Its tension T pulls the points together when positive:

@@ -17,6 +17,7 @@
 #include "mo2d/dynamics.hpp"
 #include "mo2d/error.hpp"
 #include "mo2d/kinematics.hpp"
+#include "mo2d/quasi_steady.hpp"
 #include "output/trajectory_labels.hpp"
 #include "run/cpu_time.hpp"
 
@@ -361,6 +362,7 @@ Trajectory forward_dynamics(const Model& m, const State& initial, const ForwardO
   const double start = detail::cpu_seconds();
   State s0 = initial;
   s0.t = o.t0;
+  if (has_quasi_steady(m)) detail::start_quasi_steady(d, s0.t, s0.q0, s0.q1);
   switch (o.integrator) {
     case Integrator::rk4:
     case Integrator::dopri5:
@@ -393,6 +395,7 @@ Trajectory forward_dynamics(const Model& m, const State& initial, const ForwardO
   r.reactions.conservativeResize(used, Eigen::NoChange);
   r.stats = d.stats;
   detail::reduced_spring_slack(m, r, r.stats.warnings);
+  reset_quasi_steady(m);
   return r;
 }
 

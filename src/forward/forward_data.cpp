@@ -21,6 +21,7 @@
 #include "mo2d/dynamics.hpp"
 #include "mo2d/error.hpp"
 #include "mo2d/kinematics.hpp"
+#include "mo2d/quasi_steady.hpp"
 
 namespace mo2d {
 
@@ -67,6 +68,7 @@ void init_vectors(ForwardData& d) {
 
 ForwardData::ForwardData(const Model& model, const ForwardOptions& opt) : m(model), o(opt) {
   init_vectors(*this);
+  quasi_steady_ = has_quasi_steady(m);
   if (uses_sparse(m, o)) {
     init_sparse();
     return;
@@ -398,6 +400,14 @@ NewtonOptions projection_newton(double tolerance, double penalty) {
 }  // namespace
 
 void ForwardData::project(double t, VectorXd& q0, VectorXd& q1, double tol_pos, double tol_vel) {
+  if (quasi_steady_)
+    detail::settle_quasi_steady(*this, t, q0, q1, tol_pos, tol_vel);
+  else
+    project_held(t, q0, q1, tol_pos, tol_vel);
+}
+
+void ForwardData::project_held(double t, VectorXd& q0, VectorXd& q1, double tol_pos,
+                               double tol_vel) {
   ++stats.projections;
   if (sparse_) {
     project_sparse(t, q0, q1, tol_pos, tol_vel);

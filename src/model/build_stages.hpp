@@ -235,7 +235,8 @@ void add_chains(const Flat& flat, Model& m);
 void init_chains(Model& m);
 // A spring with reduce: constraint (reduced_springs.cpp): its constraint row (|p_b - p_a| = rest
 // length), the reaction "name.tension" and m.reduced_springs, instead of a load.
-void add_reduced_spring(const SpringLoad& s, int owner, Model& m);
+// quasi_steady: the length held is a cell forward runs update (ReducedSpring::held_length).
+void add_reduced_spring(const SpringLoad& s, int owner, Model& m, bool quasi_steady);
 // Joint friction (frictions.cpp): after the rows (reactions, slides) are known.
 void add_frictions(const Flat& flat, const Elements& el, const Reduced& red, Model& m);
 // laws.cpp: m.quantities from the bodies, nodes, revolute joints, springs and points.

@@ -79,8 +79,13 @@ void add_springs(const Flat& flat, Model& m) {
     if (sp.def.tension && (l.stiffness != 0 || l.damping != 0))
       throw Error(what + ": a tension law replaces stiffness and damping (give one or the other)",
                   name);
-    if (sp.def.reduce == SpringReduce::constraint)
-      add_reduced_spring(l, sp.owner, m);  // reduced_springs.cpp
+    if (sp.def.reduce == SpringReduce::quasi_steady && !sp.def.tension && !(l.stiffness > 0))
+      throw Error(what +
+                      " (reduce: quasi_steady): needs stiffness > 0 or a tension law (its "
+                      "equilibrium length under the tension is the length held)",
+                  name);
+    if (sp.def.reduce != SpringReduce::none)  // reduced_springs.cpp
+      add_reduced_spring(l, sp.owner, m, sp.def.reduce == SpringReduce::quasi_steady);
     else
       m.springs.push_back(std::move(l));
   }

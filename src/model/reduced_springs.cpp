@@ -11,11 +11,19 @@
 // bias exactly. The constraint force is -A^T lambda = -lambda e^T (...), and the spring's force
 // on the mechanism is -T d l / d q0: so T = lambda, reported as the reaction "name.tension"
 // (factor +1), the label the spring's tension had.
+//
+// reduce: quasi_steady (docs/reduction.md, "The quasi-steady-state model") is the same row with
+// the length l_0 replaced by a held length L(t) = L_n + Ldot_n (t - t_n) that forward runs move to
+// the spring's equilibrium length under T (src/forward/quasi_steady.cpp): psi = |p_b - p_a| -
+// L(t), L read from a cell shared with m.reduced_springs (A does not depend on L; the row's
+// right-hand side is Ldot_n).
 #include <array>
 #include <cmath>
+#include <memory>
 
 #include "constraints/common.hpp"
 #include "mo2d/error.hpp"
+#include "mo2d/quasi_steady.hpp"
 #include "model/build_stages.hpp"
 
 namespace mo2d::build {
@@ -77,8 +85,9 @@ PointArgs point_args(const Model& m, const BodyPoint& bp, std::vector<VarRef>& a
 
 }  // namespace
 
-void add_reduced_spring(const SpringLoad& s, int owner, Model& m) {
-  const std::string what = "spring '" + s.name + "' (reduce: constraint)";
+void add_reduced_spring(const SpringLoad& s, int owner, Model& m, bool quasi_steady) {
+  const std::string what =
+      "spring '" + s.name + "' (reduce: " + (quasi_steady ? "quasi_steady)" : "constraint)");
   if (!(s.rest_length > 0))
     throw Error(what +
                     ": needs rest_length > 0 (the length the constraint holds; a zero length "
@@ -87,12 +96,22 @@ void add_reduced_spring(const SpringLoad& s, int owner, Model& m) {
   Constraint::UserPosition c;
   const PointArgs a = point_args(m, s.a, c.args), b = point_args(m, s.b, c.args);
   if (c.args.empty()) throw Error(what + " joins two fixed points", s.name);
-  const double length = s.rest_length;
-  c.psi = [a, b, length](std::span<const Jet> x, Jet) {
-    const JetPoint pa = point_jet(a, x), pb = point_jet(b, x);
-    return hypot(pb.x - pa.x, pb.y - pa.y) - Jet(length);  // |p_b - p_a| - l_0
-  };
   ReducedSpring r;
+  if (quasi_steady) {
+    const auto held = std::make_shared<HeldLength>(HeldLength{.length = s.rest_length});
+    r.held_length = std::shared_ptr<double>(held, &held->length);  // aliasing: shares the cell
+    c.psi = [a, b, held](std::span<const Jet> x, Jet t) {
+      const JetPoint pa = point_jet(a, x), pb = point_jet(b, x);
+      const Jet L = Jet(held->length) + Jet(held->rate) * (t - Jet(held->t0));
+      return hypot(pb.x - pa.x, pb.y - pa.y) - L;  // |p_b - p_a| - L(t)
+    };
+  } else {
+    const double length = s.rest_length;
+    c.psi = [a, b, length](std::span<const Jet> x, Jet) {
+      const JetPoint pa = point_jet(a, x), pb = point_jet(b, x);
+      return hypot(pb.x - pa.x, pb.y - pa.y) - Jet(length);  // |p_b - p_a| - l_0
+    };
+  }
   r.spring = s;
   r.constraint = add_constraint(m, Constraint{.name = s.name, .owner = owner, .def = std::move(c)},
                                 1, 1, {".length"}, {".rate"});

@@ -96,7 +96,8 @@ std::string verdict(const CompliantElement& c, const RunTimeScale& s) {
     std::snprintf(buf, sizeof buf, "reduced: its mode is removed (error ~ %.1e)", c.error_output);
   else if (rel > 10)
     std::snprintf(buf, sizeof buf,
-                  "faster than the outputs resolve: reduce: constraint (error ~ %.1e)",
+                  "faster than the outputs resolve: reduce: constraint, or reduce: "
+                  "quasi_steady to keep its stretch T/k (error ~ %.1e)",
                   c.error_output);
   else if (rel > 1)
     std::snprintf(buf, sizeof buf, "near the output rate: reduce only if %.1e is acceptable",
@@ -206,7 +207,7 @@ void add_chain_spans(const Model& m, const ChainLoad& c, const Allowed& a, const
 // A chain's verdict names what exists for it: no `reduce: constraint` (the inextensible chain is
 // not written yet), a gear pair where the centres are fixed.
 void chain_verdict(CompliantElement& c) {
-  const std::string key = "reduce: constraint";
+  const std::string key = "reduce: constraint, or reduce: quasi_steady to keep its stretch T/k";
   const auto at = c.verdict.find(key);
   if (at != std::string::npos)
     c.verdict.replace(at, key.size(), "a gear pair of ratio r_a/r_b if the centres are fixed");

@@ -341,9 +341,10 @@ SpringReduce spring_reduce(const Reader& r, const YAML::Node& node, const std::s
   const std::string v = r.string(node, what + ".reduce");
   if (v == "none") return SpringReduce::none;
   if (v == "constraint") return SpringReduce::constraint;
-  const std::vector<std::string> names = {"none", "constraint"};
-  r.fail(node,
-         what + ".reduce: '" + v + "' is not one of none, constraint" + did_you_mean(v, names));
+  if (v == "quasi_steady") return SpringReduce::quasi_steady;
+  const std::vector<std::string> names = {"none", "constraint", "quasi_steady"};
+  r.fail(node, what + ".reduce: '" + v + "' is not one of none, constraint, quasi_steady" +
+                   did_you_mean(v, names));
 }
 
 void read_loads(Context& c, const YAML::Node& node, bool root) {

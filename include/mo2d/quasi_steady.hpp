@@ -1,0 +1,68 @@
+#pragma once
+// The quasi-steady-state model of a spring (SpringReduce::quasi_steady; Gamba 2009, 2.3;
+// docs/reduction.md, "The quasi-steady-state model"). The spring's length rate is held at zero
+// by the row of the constraint reduction (A = d l / d q0, multiplier the tension T), and the
+// length it holds is its equilibrium length under T: the l at which the spring's own law at
+// zero rate gives T,
+//
+//   T_law(l, rate = 0) = T        (linear: l = l_0 + T / k; damping gives nothing at zero rate)
+//
+// i.e. the configuration where the full model's acceleration of l vanishes (f_fast = 0 of the
+// thesis's numerical QSS). T depends on the configuration, so forward runs settle the fixed
+// point L = L_law(T(q(L))) at every projection (settle_quasi_steady): project on the constraints
+// with the held lengths, evaluate T, move the held lengths, until they move by less than the
+// projection's tolerance (the iteration contracts by (dT/dl) / k per pass). Between projections
+// the row holds L extrapolated linearly from the last two settled lengths, so that the state moves
+// with the quasi-steady manifold (its rate the slow manifold's, z2 = dT/dt, not the thesis's
+// z2 = 0, which a state in positions and velocities cannot follow without a jump every step).
+#include <Eigen/Core>
+#include <cmath>
+#include <type_traits>
+
+#include "mo2d/model.hpp"
+
+namespace mo2d {
+
+struct ForwardData;
+
+// The length a quasi-steady spring's row holds, L(t) = length + rate (t - t0): the length settled
+// at the last projection of a forward run (t0) and its rate since the settling before (prev_*;
+// prev_t NaN: none yet). ReducedSpring::held_length points at `length`, the first member (the
+// cell is shared by the row's psi and the forward run; standard layout, so the pointer converts
+// back: held_of).
+struct HeldLength {
+  double length = 0, rate = 0, t0 = 0, prev_length = 0, prev_t = NAN;
+  double at(double t) const { return length + rate * (t - t0); }
+};
+static_assert(std::is_standard_layout_v<HeldLength>);
+inline HeldLength& held_of(const ReducedSpring& s) {
+  return *reinterpret_cast<HeldLength*>(s.held_length.get());
+}
+
+// The equilibrium length of the reduced spring s under the tension T at the state (t, q0, q1):
+// l_0 + T / k for a linear spring; for a tension law, Newton on T_law(l) = T with the law's
+// "length" / "extension" at l and its "rate" 0 (its other arguments at the state), from the
+// length held now. Throws Error (the spring, t, T) where the law has no such length.
+double quasi_steady_length(const Model& m, const ReducedSpring& s, double T,
+                           const Eigen::VectorXd& q0, const Eigen::VectorXd& q1, double t);
+
+// Whether m has quasi-steady springs.
+bool has_quasi_steady(const Model& m);
+
+// Every quasi-steady spring's held length back to its rest length (the state a Model is built in;
+// forward_dynamics calls it at its end).
+void reset_quasi_steady(const Model& m);
+
+namespace detail {
+// Project (q0, q1) on the constraints with the quasi-steady lengths settled at t (above).
+// Throws Error naming the spring if the fixed point does not converge in 30 passes.
+void settle_quasi_steady(ForwardData& d, double t, Eigen::VectorXd& q0, Eigen::VectorXd& q1,
+                         double tol_pos, double tol_vel);
+// The start of a forward run: the held lengths from the rest lengths, settled on the initial
+// state (which moves onto them). Throws Error naming the springs for an integrator that does
+// not project (cvode_adams, baumgarte): it could not follow the lengths; and for cvode_bdf, whose
+// step history does not follow their updates at the projections (it fails or crawls).
+void start_quasi_steady(ForwardData& d, double t, Eigen::VectorXd& q0, Eigen::VectorXd& q1);
+}  // namespace detail
+
+}  // namespace mo2d
