@@ -228,7 +228,8 @@ std::vector<CompliantElement> fidelity_report(const Model& m, const VectorXd& q0
     c.reduced = true;
     out.push_back(std::move(c));
   }
-  for (const ChainLoad& c : m.chains) add_chain_spans(m, c, a, q0, t, out);
+  for (const ChainLoad& c : m.chains)  // an inextensible chain is already reduced: its row holds
+    if (c.fidelity != ChainFidelity::inextensible) add_chain_spans(m, c, a, q0, t, out);
   for (CompliantElement& c : out) {
     complete(c, scale);
     if (c.kind.starts_with("chain")) chain_verdict(c);
