@@ -25,6 +25,7 @@
 #include <Eigen/LU>
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 
 #include "dynamics/chain.hpp"
 #include "forward/forward_run.hpp"
@@ -36,9 +37,18 @@
 namespace mo2d::detail {
 namespace {
 
-constexpr double kSpanTol = 1e-9;  // relative to the rest length
-constexpr int kChatter = 8;        // switches at one instant before the run is refused
+constexpr double kSpanTol = 1e-9;    // relative to the rest length
+constexpr int kChatter = 8;          // switches at one instant before the run is refused
+constexpr int kMaxSwitches = 10000;  // switches in a run before it is refused
 const char* const kSpanName[2] = {"upper", "lower"};
+
+// Times, impulses and energies of the switch lines: 10 significant digits (a switch time is
+// compared with closed forms to 1e-7 s).
+std::string num(double v) {
+  char b[32];
+  std::snprintf(b, sizeof b, "%.10g", v);
+  return b;
+}
 
 struct Lengths {
   double gap[2];  // rest - l of each span (>= 0: not longer than its rest length)
@@ -100,13 +110,11 @@ class Switcher {
   Trajectory out_;
   int filled_ = 0;
   double off_[kEnergyTerms] = {0, 0, 0, 0};
-  int same_instant_ = 0;
+  int same_instant_ = 0, switches_ = 0;
   double last_switch_ = -1e300, slack_since_ = 0;
 
   double tension_tol() const { return 1e-9 * std::max(t_ref_, 1e-3); }
-  double grid(int k) const {
-    return o_.t0 + (o_.t1 - o_.t0) * k / (o_.samples - 1);
-  }
+  double grid(int k) const { return o_.t0 + (o_.t1 - o_.t0) * k / (o_.samples - 1); }
   const ChainLoad& chain(size_t k) const { return m_.chains[chains_[k]]; }
   void note(const std::string& line) { out_.stats.warnings.push_back(line); }
   std::vector<int> modes_with(size_t k, int s) const {
@@ -123,9 +131,9 @@ class Switcher {
   double impact(State& s, const std::vector<int>& modes, size_t k);
   double tension_in(const std::vector<int>& modes, size_t k, const State& s);
   [[noreturn]] void fail(size_t k, double t, const std::string& what) const {
-    throw Error("chain '" + chain(k).name + "' (inextensible): " + what + " at t = " + fmt(t) +
-                    " s",
-                chain(k).name, t);
+    throw Error(
+        "chain '" + chain(k).name + "' (inextensible): " + what + " at t = " + fmt(t) + " s",
+        chain(k).name, t);
   }
 };
 
@@ -244,9 +252,9 @@ bool Switcher::engage(State& s, size_t k, int span, const char* why) {
   const double e0 = off_[kDissipated];
   const double P = impact(s, modes, k);
   const double T = tension_in(modes, k, s);
-  note("chain '" + chain(k).name + "': the " + kSpanName[span] + " span " + why + " at t = " +
-       fmt(s.t) + " s: perfectly inelastic engagement, impulse " + fmt(P) +
-       " N s, kinetic energy lost " + fmt(off_[kDissipated] - e0) + " J; tension then " + fmt(T) +
+  note("chain '" + chain(k).name + "': the " + kSpanName[span] + " span " + why +
+       " at t = " + num(s.t) + " s: perfectly inelastic engagement, impulse " + num(P) +
+       " N s, kinetic energy lost " + num(off_[kDissipated] - e0) + " J; tension then " + num(T) +
        " N" + (T >= -tension_tol() ? "" : " (< 0: it does not hold, the chain stays slack)"));
   if (T < -tension_tol()) return false;
   spans_[k] = span;
@@ -261,7 +269,7 @@ void Switcher::start(State& s) {
       if (L.gap[sp] < -span_tol(c, sp))
         fail(k, s.t,
              std::string("the ") + kSpanName[sp] + " span is longer than its rest length by " +
-                 fmt(-L.gap[sp]) + " m in the initial state");
+                 num(-L.gap[sp]) + " m in the initial state");
     spans_[k] = -1;
     if (L.gap[0] <= span_tol(c, 0) && tension_in(modes_with(k, 0), k, s) >= -tension_tol()) {
       spans_[k] = 0;
@@ -274,7 +282,7 @@ void Switcher::start(State& s) {
     if (spans_[k] < 0) slack_since_ = s.t;
     note("chain '" + c.name + "': " +
          (spans_[k] < 0 ? std::string("slack") : std::string(kSpanName[spans_[k]]) + " span taut") +
-         " at t = " + fmt(s.t) + " s (start)");
+         " at t = " + num(s.t) + " s (start)");
   }
 }
 
@@ -311,6 +319,10 @@ void Switcher::switch_at(State& s) {
     same_instant_ = 0;
   }
   last_switch_ = s.t;
+  if (++switches_ > kMaxSwitches)
+    fail(which, s.t,
+         "more than " + std::to_string(kMaxSwitches) +
+             " span switches: the switching chatters; use fidelity unilateral");
   if (cause == 1)
     fail(which, s.t,
          std::string("both spans taut (the ") + kSpanName[1 - sp] +
@@ -318,19 +330,18 @@ void Switcher::switch_at(State& s) {
              " span pulls: the centre distance would be locked); the inextensible model holds "
              "one span at a time: use fidelity unilateral or a longer rest length");
   if (cause == 0) {
-    note("chain '" + c.name + "': the " + kSpanName[sp] + " span's tension reaches 0 at t = " +
-         fmt(s.t) + " s");
+    note("chain '" + c.name + "': the " + kSpanName[sp] +
+         " span's tension reaches 0 at t = " + num(s.t) + " s");
     spans_[which] = -1;
     const Lengths L = lengths(m_, c, s.q0, s.q1, s.t);
-    if (L.gap[1 - sp] <= 10 * span_tol(c, 1 - sp) && engage(s, which, 1 - sp, "takes over"))
-      return;
-    note("chain '" + c.name + "': slack from t = " + fmt(s.t) + " s");
+    if (L.gap[1 - sp] <= 10 * span_tol(c, 1 - sp) && engage(s, which, 1 - sp, "takes over")) return;
+    note("chain '" + c.name + "': slack from t = " + num(s.t) + " s");
     slack_since_ = s.t;
     return;
   }
   const Lengths L = lengths(m_, c, s.q0, s.q1, s.t);
   const int span = L.gap[0] <= L.gap[1] ? 0 : 1;
-  note("chain '" + c.name + "': slack interval " + fmt(slack_since_) + " to " + fmt(s.t) + " s");
+  note("chain '" + c.name + "': slack interval " + num(slack_since_) + " to " + num(s.t) + " s");
   engage(s, which, span, "reaches its rest length");
 }
 

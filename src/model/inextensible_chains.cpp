@@ -40,8 +40,18 @@ Constraint::UserPosition span_row(const Model& m, const ChainLoad& c, int span) 
   u.psi = [c, a, b, ta, tb, span, rest](std::span<const Jet> x, Jet t) {
     const JetPoint pa = point_jet(a, x), pb = point_jet(b, x);
     const Jet zero(0.0);
-    const detail::ChainInput<Jet> in{pa.x, pa.y, pb.x, pb.y, zero, zero, zero, zero,
-                                     ta < 0 ? zero : x[ta], tb < 0 ? zero : x[tb], zero, zero};
+    const detail::ChainInput<Jet> in{pa.x,
+                                     pa.y,
+                                     pb.x,
+                                     pb.y,
+                                     zero,
+                                     zero,
+                                     zero,
+                                     zero,
+                                     ta < 0 ? zero : x[ta],
+                                     tb < 0 ? zero : x[tb],
+                                     zero,
+                                     zero};
     const detail::Spans<Jet> sp = detail::chain_spans(c, in, t.v);
     return (span == 0 ? sp.upper.length : sp.lower.length) - Jet(rest);  // l_s - rest_s
   };
@@ -113,9 +123,9 @@ bool add_inextensible_chains(Model& m) {
   for (ChainLoad& c : m.chains) {
     if (c.fidelity != ChainFidelity::inextensible) continue;
     c.active_span = 0;
-    c.constraint = add_constraint(
-        m, Constraint{.name = c.name, .owner = 0, .def = span_row(m, c, 0)}, 1, 1, {".span"},
-        {".span_rate"});
+    c.constraint =
+        add_constraint(m, Constraint{.name = c.name, .owner = 0, .def = span_row(m, c, 0)}, 1, 1,
+                       {".span"}, {".span_rate"});
     const int row = m.constraints[c.constraint].row1;
     m.reactions.push_back({c.name + ".upper.tension", row, 1});  // T = lambda
     m.reactions.push_back({c.name + ".lower.tension", row, 0});

