@@ -60,8 +60,11 @@ Lengths lengths(const Model& m, const ChainLoad& c, const VectorXd& q0, const Ve
   return {{c.rest_upper - v.upper_length, c.rest_lower - v.lower_length}};
 }
 
+double rest(const ChainLoad& c, int s) {
+  return s == 0 ? c.rest_upper : c.rest_lower;
+}
 double span_tol(const ChainLoad& c, int s) {
-  return kSpanTol * (s == 0 ? c.rest_upper : c.rest_lower);
+  return kSpanTol * rest(c, s);
 }
 
 // A model of one mode with its event workspace and the reaction columns of the tensions.
@@ -95,6 +98,7 @@ class Switcher {
     for (int i = 0; i < static_cast<int>(m.chains.size()); ++i)
       if (m.chains[i].fidelity == ChainFidelity::inextensible) chains_.push_back(i);
     spans_.assign(chains_.size(), 0);
+    watch_.assign(chains_.size(), false);
     inner_ = o;
     inner_.accuracy = 0;
     inner_.stop_when = nullptr;
@@ -106,6 +110,10 @@ class Switcher {
   const ForwardOptions& o_;
   ForwardOptions inner_;
   std::vector<int> chains_, spans_;
+  // per chain, taut: whether the other span had slack at the segment's start (its reaching its
+  // length is then an event); else both are at their length (fixed centres, the default rest
+  // lengths) and its staying there is checked at the recorded samples (check_both_taut)
+  std::vector<bool> watch_;
   double t_ref_ = 0;  // largest tension seen (N)
   Trajectory out_;
   int filled_ = 0;
@@ -113,7 +121,8 @@ class Switcher {
   int same_instant_ = 0, switches_ = 0;
   double last_switch_ = -1e300, slack_since_ = 0;
 
-  double tension_tol() const { return 1e-9 * std::max(t_ref_, 1e-3); }
+  double tension_ref() const { return std::max(t_ref_, 1e-3); }
+  double tension_tol() const { return kSpanTol * tension_ref(); }
   double grid(int k) const { return o_.t0 + (o_.t1 - o_.t0) * k / (o_.samples - 1); }
   const ChainLoad& chain(size_t k) const { return m_.chains[chains_[k]]; }
   void note(const std::string& line) { out_.stats.warnings.push_back(line); }
@@ -130,6 +139,16 @@ class Switcher {
   bool engage(State& s, size_t k, int span, const char* why);
   double impact(State& s, const std::vector<int>& modes, size_t k);
   double tension_in(const std::vector<int>& modes, size_t k, const State& s);
+  void start_segment(const State& s);
+  void check_both_taut(const Model& mm, const Trajectory& r);
+  [[noreturn]] void both_taut(size_t k, double t) const {
+    const int sp = spans_[k];
+    fail(k, t,
+         std::string("both spans taut (the ") + kSpanName[1 - sp] +
+             " span reaches its rest length while the " + kSpanName[sp] +
+             " span pulls: the centre distance would be locked); the inextensible model holds "
+             "one span at a time: use fidelity unilateral or a longer rest length");
+  }
   [[noreturn]] void fail(size_t k, double t, const std::string& what) const {
     throw Error(
         "chain '" + chain(k).name + "' (inextensible): " + what + " at t = " + fmt(t) + " s",
@@ -149,13 +168,36 @@ double Switcher::event(Mode& md, double t, const VectorXd& q0, const VectorXd& q
     if (s >= 0) {
       const double T = (*r)[md.tension[k]];
       t_ref_ = std::max(t_ref_, std::abs(T));
-      g = std::min(g, T + tension_tol());
-      g = std::min(g, L.gap[1 - s] + span_tol(c, 1 - s));
+      g = std::min(g, T / tension_ref() + kSpanTol);
+      if (watch_[k]) g = std::min(g, L.gap[1 - s] / rest(c, 1 - s) + kSpanTol);
     } else {
-      g = std::min({g, L.gap[0] + span_tol(c, 0), L.gap[1] + span_tol(c, 1)});
+      g = std::min({g, L.gap[0] / rest(c, 0) + kSpanTol, L.gap[1] / rest(c, 1) + kSpanTol});
     }
   }
   return g;
+}
+
+// Which taut chains have slack on their other span at a segment's start.
+void Switcher::start_segment(const State& s) {
+  for (size_t k = 0; k < chains_.size(); ++k) {
+    const int sp = spans_[k];
+    watch_[k] = sp >= 0 && lengths(m_, chain(k), s.q0, s.q1, s.t).gap[1 - sp] >
+                               10 * span_tol(chain(k), 1 - sp);
+  }
+}
+
+// A taut chain whose other span was at its length too must keep it there (no stretch beyond
+// 1e-6 of its rest length) at every recorded sample of the leg.
+void Switcher::check_both_taut(const Model& mm, const Trajectory& r) {
+  for (size_t k = 0; k < chains_.size(); ++k) {
+    const int sp = spans_[k];
+    if (sp < 0 || watch_[k]) continue;
+    for (Eigen::Index i = 0; i < r.time.size(); ++i) {
+      const Lengths L =
+          lengths(mm, chain(k), r.q0.row(i).transpose(), r.q1.row(i).transpose(), r.time[i]);
+      if (L.gap[1 - sp] < -1e-6 * rest(chain(k), 1 - sp)) both_taut(k, r.time[i]);
+    }
+  }
 }
 
 Trajectory Switcher::leg(Mode& md, const State& s, double t1, int samples) {
@@ -301,10 +343,10 @@ void Switcher::switch_at(State& s) {
       if (g < worst) worst = g, which = k, cause = why;
     };
     if (sp >= 0) {
-      consider(r[md.tension[k]] / std::max(t_ref_, 1e-3), 0);
-      consider((L.gap[1 - sp] + span_tol(c, 1 - sp)) / span_tol(c, 1 - sp), 1);
+      consider(r[md.tension[k]] / tension_ref() + kSpanTol, 0);
+      if (watch_[k]) consider(L.gap[1 - sp] / rest(c, 1 - sp) + kSpanTol, 1);
     } else {
-      consider((std::min(L.gap[0], L.gap[1]) + span_tol(c, 0)) / span_tol(c, 0), 2);
+      consider(std::min(L.gap[0] / rest(c, 0), L.gap[1] / rest(c, 1)) + kSpanTol, 2);
     }
   }
   const ChainLoad& c = chain(which);
@@ -323,12 +365,7 @@ void Switcher::switch_at(State& s) {
     fail(which, s.t,
          "more than " + std::to_string(kMaxSwitches) +
              " span switches: the switching chatters; use fidelity unilateral");
-  if (cause == 1)
-    fail(which, s.t,
-         std::string("both spans taut (the ") + kSpanName[1 - sp] +
-             " span reaches its rest length while the " + kSpanName[sp] +
-             " span pulls: the centre distance would be locked); the inextensible model holds "
-             "one span at a time: use fidelity unilateral or a longer rest length");
+  if (cause == 1) both_taut(which, s.t);
   if (cause == 0) {
     note("chain '" + c.name + "': the " + kSpanName[sp] +
          " span's tension reaches 0 at t = " + num(s.t) + " s");
@@ -362,6 +399,7 @@ Trajectory Switcher::run(const State& initial) {
   const double h = (o_.t1 - o_.t0) / (N - 1);
   while (filled_ < N) {
     Mode md(chain_mode_model(m_, spans_), inner_);
+    start_segment(s);
     if (!(event(md, s.t, s.q0, s.q1) > 0)) {  // the mode does not hold from its start
       switch_at(s);
       continue;
@@ -381,6 +419,7 @@ Trajectory Switcher::run(const State& initial) {
     } else {
       r = leg(md, s, grid(filled_), 2);
     }
+    check_both_taut(md.model, r);
     append(r);
     const Eigen::Index e = r.time.size() - 1;
     s.t = r.time[e];

@@ -203,13 +203,15 @@ void add_chain_spans(const Model& m, const ChainLoad& c, const Allowed& a, const
   }
 }
 
-// A chain's verdict names what exists for it: no `reduce: constraint` (the inextensible chain is
-// not written yet), a gear pair where the centres are fixed.
+// A chain's verdict names what exists for it: `fidelity: inextensible` (the span switching by the
+// sign of the tension), or a gear pair where the centres are fixed.
 void chain_verdict(CompliantElement& c) {
   const std::string key = "reduce: constraint";
   const auto at = c.verdict.find(key);
   if (at != std::string::npos)
-    c.verdict.replace(at, key.size(), "a gear pair of ratio r_a/r_b if the centres are fixed");
+    c.verdict.replace(at, key.size(),
+                      "fidelity: inextensible (or a gear pair of ratio r_a/r_b if the centres are "
+                      "fixed)");
 }
 
 }  // namespace
