@@ -357,6 +357,13 @@ struct ChainLoad {
   // Gamba's printed extension (2009, §2.2: without the wrap term (r_b - r_a)(beta +- alpha)), for
   // comparison in tests only: its forces have no potential (energy is not conserved).
   bool printed_extension = false;
+  // Inextensible (src/model/inextensible_chains.cpp): the span held at its rest length by
+  // m.constraints[constraint] (the user position row l - rest = 0; its multiplier the tension,
+  // reactions "name.upper.tension" and "name.lower.tension"): 0 upper, 1 lower, -1 none (slack,
+  // no row). mode_fixed: a model of one mode (chain_mode_model), integrated as it is; otherwise
+  // forward_dynamics switches the spans (src/forward/chain_switching.cpp).
+  int constraint = -1, active_span = -1;
+  bool mode_fixed = false;
 };
 
 // Friction in a joint (FrictionDef; evaluated in src/dynamics/friction.cpp). Its value F (N or

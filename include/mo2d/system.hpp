@@ -287,8 +287,10 @@ struct SpringDef {
 // How a chain or belt drive is modelled (src/dynamics/chain.hpp, docs/reduction.md): each of
 // its two spans a spring that only pulls (a chain, a belt: slack while shorter than its rest
 // length), or a bilateral spring (also pushes: the upper- and lower-span models of Gamba 2009,
-// §2.5).
-enum class ChainFidelity { unilateral, bilateral };
+// §2.5), or inextensible: the taut span's material length held at its rest length by a holonomic
+// constraint whose multiplier is its tension, the spans switching by the sign of the tension
+// (slack in between; src/model/inextensible_chains.cpp, src/forward/chain_switching.cpp).
+enum class ChainFidelity { unilateral, bilateral, inextensible };
 
 // A chain or belt drive between two sprockets (or pulleys): sprocket a of pitch radius radius_a
 // centred at centre_a, fixed in body_a, and sprocket b likewise ("ground" allowed for either: a
@@ -316,8 +318,8 @@ struct ChainDef {
   // in the System's frame at the initial configuration
   Vec2 centre_b{0, 0};
   double radius_b = 0;   // m, > 0; the pitch circles may not overlap (|c_b - c_a| > r_a + r_b)
-  double stiffness = 0;  // N/m per span (> 0)
-  double damping = 0;    // N s/m per span (>= 0)
+  double stiffness = 0;  // N/m per span (> 0; inextensible: >= 0, read by the fidelity report only)
+  double damping = 0;    // N s/m per span (>= 0; not used by inextensible)
   std::optional<double> rest_upper{}, rest_lower{};  // m (> 0); default: the initial span length
   // spans that only pull, or bilateral springs
   ChainFidelity fidelity = ChainFidelity::unilateral;

@@ -114,6 +114,7 @@ double chain_potential(const Model& m, const Vr& q0) {
   const Eigen::VectorXd zero = Eigen::VectorXd::Zero(m.n1);
   double v = 0;
   for (const ChainLoad& c : m.chains) {
+    if (c.fidelity == ChainFidelity::inextensible) continue;  // no elastic energy
     const Spans<double> sp = chain_spans(c, chain_input(m, c, q0, zero), 0.0);
     for (const auto& [s, rest] : {std::pair{sp.upper, c.rest_upper}, {sp.lower, c.rest_lower}}) {
       const double e = s.length - rest;

@@ -37,6 +37,7 @@
 #include <cmath>
 #include <numbers>
 #include <string>
+#include <vector>
 
 #include "mo2d/error.hpp"
 #include "mo2d/jet.hpp"
@@ -126,6 +127,8 @@ struct SpanTension {
 };
 template <class S>
 SpanTension<S> span_tension(const ChainLoad& c, const Span<S>& s, double rest) {
+  // inextensible: the tension is the multiplier of the span's row (no force here)
+  if (c.fidelity == ChainFidelity::inextensible) return {S(0.0), S(0.0), false};
   const S e = s.length - rest;
   if (c.fidelity == ChainFidelity::unilateral && !(value_of(e) > 0)) return {S(0.0), S(0.0), false};
   const S T = c.stiffness * e + c.damping * s.rate;
@@ -154,6 +157,9 @@ double chain_damping_power_derivative(const Model& m, const ChainVec& q0, const 
 // fidelity report takes their gradient over q1).
 std::array<double, 2> chain_span_rates(const Model& m, const ChainLoad& c, const ChainVec& q0,
                                        const ChainVec& q1, double t);
+// m with each inextensible chain in the span mode spans[k] (k-th inextensible chain; 0 upper,
+// 1 lower, -1 slack: its row removed) and mode_fixed (src/model/inextensible_chains.cpp).
+Model chain_mode_model(const Model& m, const std::vector<int>& spans);
 // Sets beta0, the offsets (l = L at m.q0) and the default rest lengths (NaN: the initial L).
 void init_chain(const Model& m, ChainLoad& c);
 

@@ -345,6 +345,7 @@ Trajectory forward_dynamics(const Model& m, const State& initial, const ForwardO
                 m.name);
   if (initial.q0.size() != m.n0 || initial.q1.size() != m.n1)
     throw Error("forward dynamics: the initial state does not match the model's variables", m.name);
+  if (detail::switches_chains(m)) return detail::forward_chain_switching(m, initial, o);
   ForwardData d(m, o);
   d.stats.sparse = d.sparse_engine() != nullptr;
   Trajectory r = detail::labelled_trajectory(m, RunKind::forward);

@@ -387,12 +387,15 @@ class RkDriver {
     rec.record(t, q0, q1, y.data() + m_.n0 + m_.n1);
   }
   // The stop condition changed sign over the step (t, t + h]: locate the crossing by the secant
-  // method on the step length (each try redoes the step from (t, y)), record it and stop.
+  // method on the step length (each try redoes the step from (t, y)), record it and stop. Illinois
+  // variant: an end kept twice has its value halved (plain regula falsi stalls at one end of a
+  // convex or nearly flat condition, e.g. the span lengths of an inextensible chain).
   void locate_event(double t, const VectorXd& y, double h, double g_lo, double g_hi,
                     Recorder& rec) {
     double lo = 0, hi = h;
     VectorXd y_try(n_), y_best(n_);
     double t_best = t + h;
+    int kept = 0;  // -1: lo moved last, +1: hi moved last
     for (int it = 0; it < 60; ++it) {
       const double mid = lo + (hi - lo) * g_lo / (g_lo - g_hi);
       double err = 0;
@@ -400,10 +403,15 @@ class RkDriver {
       const double g = event(t + mid, y_try);
       y_best = y_try;
       t_best = t + mid;
-      if ((g < 0) == (g_lo < 0))
+      if ((g < 0) == (g_lo < 0)) {
         lo = mid, g_lo = g;
-      else
+        if (kept == -1) g_hi /= 2;
+        kept = -1;
+      } else {
         hi = mid, g_hi = g;
+        if (kept == 1) g_lo /= 2;
+        kept = 1;
+      }
       if (std::abs(hi - lo) < 1e-13 * std::max(1.0, std::abs(t)) || g == 0) break;
     }
     d_.stats.stopped_by_event = true;

@@ -57,6 +57,12 @@ void run_explicit_rk(const Model& m, ForwardData& d, const State& s0, const Forw
 void run_cvode(const Model& m, ForwardData& d, const State& s0, const ForwardOptions& o,
                Recorder& rec);
 
+// Inextensible chains (chain_switching.cpp): whether m has one whose spans forward_dynamics
+// switches (not a model of one mode), and that run: segments of one span mode each, located by
+// the stop condition, the switches and impacts reported in the run's warnings.
+bool switches_chains(const Model& m);
+Trajectory forward_chain_switching(const Model& m, const State& initial, const ForwardOptions& o);
+
 // The budget of a forward run (max_steps, max_seconds, progress monitor) with the hint its
 // error gives besides the budget (integrator, tolerances, step).
 detail::RunBudget::Settings forward_budget(const Model& m, const ForwardOptions& o,

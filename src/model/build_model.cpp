@@ -80,6 +80,7 @@ Model build_model(const System& system, const BuildOptions& options) {
   check_input_labels(m);
   assemble_model(m, numbering.q0, options);
   init_chains(m);
+  if (add_inextensible_chains(m)) assemble_model(m, m.q0, options);  // 8b. onto the spans' rows
   m.sketch = std::move(sketch);
   complete_sketch_report(m);
   return m;

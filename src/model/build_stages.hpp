@@ -233,6 +233,10 @@ void add_loads(const Flat& flat, const Elements& el, const Reduced& red, Model& 
 // initial geometry once m.q0 is assembled.
 void add_chains(const Flat& flat, Model& m);
 void init_chains(Model& m);
+// Inextensible chains (inextensible_chains.cpp), once init_chains has set their geometry: one row
+// each, the upper span held at its rest length, reactions "name.upper.tension" (the multiplier)
+// and "name.lower.tension" (factor 0). True if it added any (the model is then assembled again).
+bool add_inextensible_chains(Model& m);
 // A spring with reduce: constraint (reduced_springs.cpp): its constraint row (|p_b - p_a| = rest
 // length), the reaction "name.tension" and m.reduced_springs, instead of a load.
 // quasi_steady: the length held is a cell forward runs update (ReducedSpring::held_length).

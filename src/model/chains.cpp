@@ -38,7 +38,8 @@ void add_chains(const Flat& flat, Model& m) {
     const std::string what = "chain '" + name + "'";
     check_positive(d.radius_a, true, what, "radius_a", name);
     check_positive(d.radius_b, true, what, "radius_b", name);
-    check_positive(d.stiffness, true, what, "stiffness", name);
+    // inextensible: the stiffness only tells the fidelity report what was reduced
+    check_positive(d.stiffness, d.fidelity != ChainFidelity::inextensible, what, "stiffness", name);
     check_positive(d.damping, false, what, "damping", name);
     ChainLoad c;
     c.name = name;

@@ -204,13 +204,15 @@ void add_chain_spans(const Model& m, const ChainLoad& c, const Allowed& a, const
   }
 }
 
-// A chain's verdict names what exists for it: no `reduce: constraint` (the inextensible chain is
-// not written yet), a gear pair where the centres are fixed.
+// A chain's verdict names what exists for it: `fidelity: inextensible` (the span switching by the
+// sign of the tension), or a gear pair where the centres are fixed.
 void chain_verdict(CompliantElement& c) {
   const std::string key = "reduce: constraint, or reduce: quasi_steady to keep its stretch T/k";
   const auto at = c.verdict.find(key);
   if (at != std::string::npos)
-    c.verdict.replace(at, key.size(), "a gear pair of ratio r_a/r_b if the centres are fixed");
+    c.verdict.replace(at, key.size(),
+                      "fidelity: inextensible (or a gear pair of ratio r_a/r_b if the centres are "
+                      "fixed)");
 }
 
 }  // namespace
@@ -229,7 +231,8 @@ std::vector<CompliantElement> fidelity_report(const Model& m, const VectorXd& q0
     c.reduced = true;
     out.push_back(std::move(c));
   }
-  for (const ChainLoad& c : m.chains) add_chain_spans(m, c, a, q0, t, out);
+  for (const ChainLoad& c : m.chains)  // an inextensible chain is already reduced: its row holds
+    if (c.fidelity != ChainFidelity::inextensible) add_chain_spans(m, c, a, q0, t, out);
   for (CompliantElement& c : out) {
     complete(c, scale);
     if (c.kind.starts_with("chain")) chain_verdict(c);

@@ -55,7 +55,10 @@ std::vector<std::string> output_column_labels(const Model& m, const OutputReques
     for (const ReducedSpring& s : m.reduced_springs) add(s.spring.name, {"length", "rate"});
     for (const TorsionalLoad& s : m.torsional_springs) add(s.name, {"torque", "rate", "power"});
     for (const ChainLoad& s : m.chains)
-      add(s.name, {"upper.length", "upper.tension", "lower.length", "lower.tension", "power"});
+      if (s.fidelity == ChainFidelity::inextensible)  // tensions: the reactions; power 0
+        add(s.name, {"upper.length", "lower.length"});
+      else
+        add(s.name, {"upper.length", "upper.tension", "lower.length", "lower.tension", "power"});
   }
   for (int k : requested_points(m, q)) add(m.points[k].name, {"x", "y", "vx", "vy"});
   if (q.com)
@@ -105,6 +108,11 @@ void output_column_values(const Model& m, const OutputRequest& q,
     }
     for (const ChainLoad& s : m.chains) {
       const ChainValue v = chain_value(m, s, q0, q1, t);
+      if (s.fidelity == ChainFidelity::inextensible) {
+        put(v.upper_length);
+        put(v.lower_length);
+        continue;
+      }
       for (double x : {v.upper_length, v.upper_tension, v.lower_length, v.lower_tension, v.power})
         put(x);
     }

@@ -20,15 +20,15 @@ ChainFidelity fidelity(const Reader& r, const YAML::Node& node, const std::strin
   const std::string v = r.string(node, what + ".fidelity");
   if (v == "unilateral") return ChainFidelity::unilateral;
   if (v == "bilateral") return ChainFidelity::bilateral;
+  if (v == "inextensible") return ChainFidelity::inextensible;
   if (v == "quasi_steady")  // docs/reduction.md, "The quasi-steady-state model": why not yet
     r.fail(node, what +
-                     ".fidelity: quasi_steady is not written yet for chains (it needs the "
-                     "inextensible chain's span row and its switching between the spans; a "
+                     ".fidelity: quasi_steady is not written yet for chains (the held-length "
+                     "mechanism of reduce: quasi_steady on the inextensible chain's span row; a "
                      "spring can be reduced so: reduce: quasi_steady)");
-  const std::vector<std::string> names = {"unilateral", "bilateral"};
-  r.fail(node, what + ".fidelity: '" + v + "' is not one of unilateral, bilateral" +
-                   did_you_mean(v, names) +
-                   " (the inextensible constraint model is not written yet: docs/reduction.md)");
+  const std::vector<std::string> names = {"unilateral", "bilateral", "inextensible"};
+  r.fail(node, what + ".fidelity: '" + v + "' is not one of unilateral, bilateral, inextensible" +
+                   did_you_mean(v, names));
 }
 
 }  // namespace
@@ -54,12 +54,14 @@ void read_chains(const Reader& r, const YAML::Node& chains, System& out, SystemI
     c.body_b = body_of(r, value, "body_b", what, info, true);
     c.centre_b = r.vec2(r.required(value, "centre_b", what), what + ".centre_b");
     c.radius_b = positive(r, value, "radius_b", what);
-    c.stiffness = positive(r, value, "stiffness", what);
+    c.fidelity = fidelity(r, value["fidelity"], what);
+    // inextensible: no stiffness needed (if given, the fidelity report reads it)
+    if (c.fidelity != ChainFidelity::inextensible || value["stiffness"].IsDefined())
+      c.stiffness = positive(r, value, "stiffness", what);
     c.damping = r.number_or(value, "damping", 0.0, what);
     if (c.damping < 0) r.fail(value["damping"], what + ".damping: must be >= 0");
     if (value["rest_upper"].IsDefined()) c.rest_upper = positive(r, value, "rest_upper", what);
     if (value["rest_lower"].IsDefined()) c.rest_lower = positive(r, value, "rest_lower", what);
-    c.fidelity = fidelity(r, value["fidelity"], what);
     info.elements.emplace_back(c.name, r.at(key));
     out.add_chain(std::move(c));
   }

@@ -4,8 +4,11 @@
 
 #include <algorithm>
 #include <cmath>
+#include <fstream>
+#include <sstream>
 #include <string>
 
+#include "mo2d/dynamics.hpp"
 #include "mo2d/forward.hpp"
 #include "mo2d/output_columns.hpp"
 #include "mo2d/scene.hpp"
@@ -88,6 +91,89 @@ TEST(ChainScene, BadInputAtItsLine) {
   expect(chain_error("radius_b: 0.1", "radius_b: 0.5"), "bad.yaml:17:5",
          "the pitch circles overlap");
   expect(chain_error("stiffness: 1e4", "stifness: 1e4"), "bad.yaml:18:10", "stifness");
+  // inextensible (docs/reduction.md): no stiffness needed; a misspelt name gets the suggestion
+  EXPECT_EQ(chain_error("stiffness: 1e4", "fidelity: inextensible"), "");
+  expect(chain_error("stiffness: 1e4", "stiffness: 1e4, fidelity: inextensibel"), "bad.yaml:18:36",
+         "'inextensibel' is not one of unilateral, bilateral, inextensible");
+  expect(chain_error("stiffness: 1e4", "stiffness: 1e4, fidelity: inextensibel"), "bad.yaml:18:36",
+         "did you mean 'inextensible'");
+  expect(chain_error("stiffness: 1e4", "stiffness: 0, fidelity: inextensible"), "bad.yaml:18:21",
+         "chain 'ch'.stiffness: must be > 0");
+  expect(chain_error("stiffness: 1e4", "fidelity: inextensible, rest_lower: -1"), "bad.yaml:18:46",
+         "chain 'ch'.rest_lower: must be > 0");
+}
+
+// The inextensible chain from a scene: the tension is the reaction column, the warnings name the
+// start mode; the loads' outputs have the lengths only.
+TEST(ChainScene, InextensibleChainRunsFromAScene) {
+  std::string s = kChainBase;
+  s.replace(s.find("stiffness: 1e4"), 14, "fidelity: inextensible");
+  s.replace(s.find("loads:"), 6,
+            "  pb: {type: revolute, node_a: ground.B, node_b: b.C}\nloads:\n  torques:\n"
+            "    drive: {body: a, torque: 1}");
+  s.replace(s.find("  O: [0, 0]"), 11, "  O: [0, 0]\n  B: [0.5, 0]");
+  s += "initial:\n  velocities: {a.w: 0}\noutputs:\n  loads: true\nrun:\n  duration: 0.2\n";
+  const Scene scene = parse_scene(s, "inext.yaml", {});
+  const Model m = build_scene_model(scene);
+  Trajectory r = forward_dynamics(m, initial_state(scene, m), forward_options(scene, m));
+  add_output_columns(m, r, scene.outputs);
+  const Eigen::Index last = r.time.size() - 1;
+  // a counter-clockwise torque on a: the upper span pulls
+  EXPECT_GT(r.reactions(last, r.reaction("ch.upper.tension")), 0);
+  EXPECT_EQ(r.reactions(last, r.reaction("ch.lower.tension")), 0);
+  EXPECT_NEAR(r.outputs(last, r.output("ch.upper.length")), m.chains[0].rest_upper, 1e-9);
+  EXPECT_THROW(r.output("ch.upper.tension"), Error);
+  EXPECT_FALSE(r.stats.warnings.empty());
+}
+
+// The drift of the inextensible chain over a 100 s run: the half-bike's scenario 1 (engine ramp,
+// coasting, brake step at 10 s, then braked to the end) with `fidelity: inextensible`, the
+// scene's 1 mm of slack: the lower span pulls, the upper while coasting, slack between, each
+// engagement an impact. Reported: max |l - rest| of the taut span, and the largest stretch
+// l - rest of any span (> 0 would be a span longer than the chain), over the 100 s.
+TEST(ChainScene, InextensibleHalfBikeDriftOver100s) {
+  std::ifstream in(chain_scene_path("half_bike"));
+  std::stringstream text;
+  text << in.rdbuf();
+  std::string yaml = text.str();
+  const size_t at = yaml.find("fidelity: unilateral");
+  ASSERT_NE(at, std::string::npos);
+  yaml.replace(at, 20, "fidelity: inextensible");
+  // the chain's row takes one degree of freedom: the wheel's rate follows the shaft's
+  const std::string v = "velocities: {shaft.w: 0, arm.w: 0, wheel.w: 0}";
+  ASSERT_NE(yaml.find(v), std::string::npos);
+  yaml.replace(yaml.find(v), v.size(), "velocities: {shaft.w: 0, arm.w: 0}");
+  const std::vector<RunOverride> run = {{"duration", "100"}, {"samples", "10001"}};
+  const Scene scene = parse_scene(yaml, "half_bike_inextensible.yaml", {}, run);
+  const Model m = build_scene_model(scene);
+  const Trajectory r = forward_dynamics(m, initial_state(scene, m), forward_options(scene, m));
+  const ChainLoad& c = m.chains.at(0);
+  const int Tu = r.reaction("chain.upper.tension"), Tl = r.reaction("chain.lower.tension");
+  double drift = 0, stretch = -1e9;
+  int taut = 0;
+  for (Eigen::Index i = 0; i < r.time.size(); ++i) {
+    const ChainValue v =
+        chain_value(m, c, r.q0.row(i).transpose(), r.q1.row(i).transpose(), r.time[i]);
+    const double eu = v.upper_length - c.rest_upper, el = v.lower_length - c.rest_lower;
+    if (r.reactions(i, Tu) > 0) drift = std::max(drift, std::abs(eu)), ++taut;
+    if (r.reactions(i, Tl) > 0) drift = std::max(drift, std::abs(el)), ++taut;
+    stretch = std::max({stretch, eu, el});
+  }
+  int switches = 0;
+  for (const std::string& w : r.stats.warnings)
+    if (w.find("chain 'chain'") != std::string::npos) ++switches, std::printf("  %s\n", w.c_str());
+  std::printf(
+      "half-bike, inextensible chain, 100 s (%s, rtol %g): %d chain events, %d of %d samples "
+      "taut; max |l - rest| of the taut span %.3e m, largest stretch %.3e m; max_drift %.3e; "
+      "energy balance error %.3e J; %.2f s CPU\n",
+      to_string(forward_options(scene, m).integrator), forward_options(scene, m).rtol, switches,
+      taut, static_cast<int>(r.time.size()), drift, stretch, r.stats.max_drift,
+      energy_balance_error(r), r.stats.cpu_seconds);
+  EXPECT_EQ(r.time.size(), 10001);
+  EXPECT_GT(taut, 9000);
+  EXPECT_GT(switches, 2);  // start, and at least one switch of span
+  EXPECT_LT(drift, 1e-9);
+  EXPECT_LT(stretch, 1e-9);
 }
 
 }  // namespace

@@ -1,0 +1,458 @@
+// Forward dynamics of inextensible chains: the span switching (docs/reduction.md, "The
+// inextensible chain"; Gamba 2009, §2.5, the upper- and lower-span models). A chain can only
+// pull, so each chain is in one of three modes: upper span taut (its row l_u = rest_u, tension
+// T_u = lambda >= 0), lower span taut, or slack (no row: both spans free, l <= rest). The run is
+// a sequence of segments, each integrated by forward_dynamics on the model of its mode
+// (chain_mode_model) with a stop condition (ForwardOptions::stop_when, located by the
+// integrator's root finding) that is positive inside the mode:
+//
+//   taut span s:  T_s + tol_T        (the chain would push: it goes slack)
+//                 rest_o - l_o + tol_l   (the other span reaches its length too: both taut)
+//   slack:        rest_s - l_s + tol_l   for both spans (a span reaches its length: engagement)
+//
+// tol_l = 1e-9 rest, tol_T = 1e-9 of the largest tension seen (at least 1e-6 N). At an event the
+// new mode is chosen deterministically (choose_span): a span whose tension reaches 0 hands over to
+// the other span if that one is at its length and then pulls (on fixed centres with the default
+// rest lengths both spans are always at their length: a direct switch), else the chain goes
+// slack; a slack span reaching its length engages by a perfectly inelastic impact (the velocities
+// projected on the new row in the mass metric: [M A^T; A 0] [q1+; mu] = [M q1; b], the chain's
+// impulse mu of its row, the kinetic energy lost added to the dissipated energy) and stays taut
+// if its tension is then >= 0. Every switch, slack interval and impulse is a line of the run's
+// warnings naming the chain, the span and the time. Both spans taut at once, an initial span
+// longer than its rest length, and switches that chatter (more than kChatter at one instant) are
+// errors naming the chain and the time. The recorded samples are the output grid's; the
+// integrated energy terms carry over from segment to segment.
+#include <Eigen/LU>
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+
+#include "dynamics/chain.hpp"
+#include "forward/forward_run.hpp"
+#include "mo2d/dynamics.hpp"
+#include "mo2d/error.hpp"
+#include "mo2d/kinematics.hpp"
+#include "output/trajectory_labels.hpp"
+
+namespace mo2d::detail {
+namespace {
+
+constexpr double kSpanTol = 1e-9;    // relative to the rest length
+constexpr int kChatter = 8;          // switches at one instant before the run is refused
+constexpr int kMaxSwitches = 10000;  // switches in a run before it is refused
+const char* const kSpanName[2] = {"upper", "lower"};
+
+// Times, impulses and energies of the switch lines: 10 significant digits (a switch time is
+// compared with closed forms to 1e-7 s).
+std::string num(double v) {
+  char b[32];
+  std::snprintf(b, sizeof b, "%.10g", v);
+  return b;
+}
+
+struct Lengths {
+  double gap[2];  // rest - l of each span (>= 0: not longer than its rest length)
+};
+
+Lengths lengths(const Model& m, const ChainLoad& c, const VectorXd& q0, const VectorXd& q1,
+                double t) {
+  const ChainValue v = chain_value(m, c, q0, q1, t);
+  return {{c.rest_upper - v.upper_length, c.rest_lower - v.lower_length}};
+}
+
+double rest(const ChainLoad& c, int s) {
+  return s == 0 ? c.rest_upper : c.rest_lower;
+}
+double span_tol(const ChainLoad& c, int s) {
+  return kSpanTol * rest(c, s);
+}
+
+// A model of one mode with its event workspace and the reaction columns of the tensions.
+struct Mode {
+  Model model;
+  ForwardData data;
+  std::vector<int> tension;  // per inextensible chain: reaction column of its taut span (-1)
+  Mode(Model mm, const ForwardOptions& o) : model(std::move(mm)), data(model, o) {
+    for (const ChainLoad& c : model.chains) {
+      if (c.fidelity != ChainFidelity::inextensible) continue;
+      int col = -1;
+      if (c.active_span >= 0) {
+        const std::string label = c.name + "." + kSpanName[c.active_span] + ".tension";
+        for (int j = 0; j < model.n_reactions(); ++j)
+          if (model.reactions[j].label == label) col = j;
+      }
+      tension.push_back(col);
+    }
+  }
+  // The tensions of the taut spans at a state (the least-squares multipliers of the run).
+  const VectorXd& reactions(double t, const VectorXd& q0, const VectorXd& q1) {
+    data.accelerations(t, q0, q1, false);
+    data.compute_reactions(t, q0, q1);
+    return data.reactions;
+  }
+};
+
+class Switcher {
+ public:
+  Switcher(const Model& m, const ForwardOptions& o) : m_(m), o_(o) {
+    for (int i = 0; i < static_cast<int>(m.chains.size()); ++i)
+      if (m.chains[i].fidelity == ChainFidelity::inextensible) chains_.push_back(i);
+    spans_.assign(chains_.size(), 0);
+    watch_.assign(chains_.size(), false);
+    inner_ = o;
+    inner_.accuracy = 0;
+    inner_.stop_when = nullptr;
+  }
+  Trajectory run(const State& initial);
+
+ private:
+  const Model& m_;
+  const ForwardOptions& o_;
+  ForwardOptions inner_;
+  std::vector<int> chains_, spans_;
+  // per chain, taut: whether the other span had slack at the segment's start (its reaching its
+  // length is then an event); else both are at their length (fixed centres, the default rest
+  // lengths) and its staying there is checked at the recorded samples (check_both_taut)
+  std::vector<bool> watch_;
+  double t_ref_ = 0;  // largest tension seen (N)
+  Trajectory out_;
+  int filled_ = 0;
+  double off_[kEnergyTerms] = {0, 0, 0, 0};
+  int same_instant_ = 0, switches_ = 0;
+  double last_switch_ = -1e300, slack_since_ = 0;
+
+  double tension_ref() const { return std::max(t_ref_, 1e-3); }
+  double tension_tol() const { return kSpanTol * tension_ref(); }
+  double grid(int k) const { return o_.t0 + (o_.t1 - o_.t0) * k / (o_.samples - 1); }
+  const ChainLoad& chain(size_t k) const { return m_.chains[chains_[k]]; }
+  void note(const std::string& line) { out_.stats.warnings.push_back(line); }
+  std::vector<int> modes_with(size_t k, int s) const {
+    std::vector<int> v = spans_;
+    v[k] = s;
+    return v;
+  }
+  double event(Mode& md, double t, const VectorXd& q0, const VectorXd& q1);
+  Trajectory leg(Mode& md, const State& s, double t1, int samples);
+  void append(const Trajectory& leg);
+  void start(State& s);
+  void switch_at(State& s);
+  bool engage(State& s, size_t k, int span, const char* why);
+  double impact(State& s, const std::vector<int>& modes, size_t k);
+  double tension_in(const std::vector<int>& modes, size_t k, const State& s);
+  void start_segment(const State& s);
+  void check_both_taut(const Model& mm, const Trajectory& r);
+  [[noreturn]] void both_taut(size_t k, double t) const {
+    const int sp = spans_[k];
+    fail(k, t,
+         std::string("both spans taut (the ") + kSpanName[1 - sp] +
+             " span reaches its rest length while the " + kSpanName[sp] +
+             " span pulls: the centre distance would be locked); the inextensible model holds "
+             "one span at a time: use fidelity unilateral or a longer rest length");
+  }
+  [[noreturn]] void fail(size_t k, double t, const std::string& what) const {
+    throw Error(
+        "chain '" + chain(k).name + "' (inextensible): " + what + " at t = " + fmt(t) + " s",
+        chain(k).name, t);
+  }
+};
+
+double Switcher::event(Mode& md, double t, const VectorXd& q0, const VectorXd& q1) {
+  double g = 1e300;
+  bool need_reactions = false;
+  for (size_t k = 0; k < chains_.size(); ++k) need_reactions |= spans_[k] >= 0;
+  const VectorXd* r = need_reactions ? &md.reactions(t, q0, q1) : nullptr;
+  for (size_t k = 0; k < chains_.size(); ++k) {
+    const ChainLoad& c = chain(k);
+    const Lengths L = lengths(md.model, c, q0, q1, t);
+    const int s = spans_[k];
+    if (s >= 0) {
+      const double T = (*r)[md.tension[k]];
+      t_ref_ = std::max(t_ref_, std::abs(T));
+      g = std::min(g, T / tension_ref() + kSpanTol);
+      if (watch_[k]) g = std::min(g, L.gap[1 - s] / rest(c, 1 - s) + kSpanTol);
+    } else {
+      g = std::min({g, L.gap[0] / rest(c, 0) + kSpanTol, L.gap[1] / rest(c, 1) + kSpanTol});
+    }
+  }
+  return g;
+}
+
+// Which taut chains have slack on their other span at a segment's start.
+void Switcher::start_segment(const State& s) {
+  for (size_t k = 0; k < chains_.size(); ++k) {
+    const int sp = spans_[k];
+    watch_[k] = sp >= 0 && lengths(m_, chain(k), s.q0, s.q1, s.t).gap[1 - sp] >
+                               10 * span_tol(chain(k), 1 - sp);
+  }
+}
+
+// A taut chain whose other span was at its length too must keep it there (no stretch beyond
+// 1e-6 of its rest length) at every recorded sample of the leg.
+void Switcher::check_both_taut(const Model& mm, const Trajectory& r) {
+  for (size_t k = 0; k < chains_.size(); ++k) {
+    const int sp = spans_[k];
+    if (sp < 0 || watch_[k]) continue;
+    for (Eigen::Index i = 0; i < r.time.size(); ++i) {
+      const Lengths L =
+          lengths(mm, chain(k), r.q0.row(i).transpose(), r.q1.row(i).transpose(), r.time[i]);
+      if (L.gap[1 - sp] < -1e-6 * rest(chain(k), 1 - sp)) both_taut(k, r.time[i]);
+    }
+  }
+}
+
+Trajectory Switcher::leg(Mode& md, const State& s, double t1, int samples) {
+  ForwardOptions o = inner_;
+  o.t0 = s.t;
+  o.t1 = t1;
+  o.samples = samples;
+  o.stop_when = [this, &md](double t, const VectorXd& q0, const VectorXd& q1) {
+    return event(md, t, q0, q1);
+  };
+  return forward_dynamics(md.model, s, o);
+}
+
+// The leg's samples that fall on the output grid, with the energy terms carried over.
+void Switcher::append(const Trajectory& r) {
+  const double h = (o_.t1 - o_.t0) / (o_.samples - 1);
+  std::vector<int> col(out_.reaction_labels.size(), -1);
+  for (size_t j = 0; j < col.size(); ++j)
+    for (size_t i = 0; i < r.reaction_labels.size(); ++i)
+      if (r.reaction_labels[i] == out_.reaction_labels[j]) col[j] = static_cast<int>(i);
+  for (Eigen::Index i = 0; i < r.time.size() && filled_ < o_.samples; ++i) {
+    if (!(std::abs(r.time[i] - grid(filled_)) <= 1e-9 * h)) continue;
+    const int k = filled_++;
+    out_.time[k] = grid(k);
+    out_.q0.row(k) = r.q0.row(i);
+    out_.q1.row(k) = r.q1.row(i);
+    out_.a1.row(k) = r.a1.row(i);
+    out_.efforts.row(k) = r.efforts.row(i);
+    for (size_t j = 0; j < col.size(); ++j)
+      out_.reactions(k, static_cast<Eigen::Index>(j)) = col[j] < 0 ? 0.0 : r.reactions(i, col[j]);
+    out_.residuals.row(k) = r.residuals.row(i);
+    out_.kinetic[k] = r.kinetic[i];
+    out_.potential[k] = r.potential[i];
+    out_.input_work[k] = off_[kInputWork] + r.input_work[i];
+    out_.load_work[k] = off_[kLoadWork] + r.load_work[i];
+    out_.constraint_work[k] = off_[kConstraintWork] + r.constraint_work[i];
+    out_.dissipated[k] = off_[kDissipated] + r.dissipated[i];
+  }
+  const Eigen::Index e = r.time.size() - 1;
+  off_[kInputWork] += r.input_work[e];
+  off_[kLoadWork] += r.load_work[e];
+  off_[kConstraintWork] += r.constraint_work[e];
+  off_[kDissipated] += r.dissipated[e];
+  RunStats& a = out_.stats;
+  const RunStats& b = r.stats;
+  a.cpu_seconds += b.cpu_seconds;
+  a.steps += b.steps;
+  a.rhs_evaluations += b.rhs_evaluations;
+  a.factorizations += b.factorizations;
+  a.projections += b.projections;
+  a.error_test_failures += b.error_test_failures;
+  a.solver_iterations += b.solver_iterations;
+  a.regularized_evaluations += b.regularized_evaluations;
+  a.stepped_over += b.stepped_over;
+  a.min_pivot_ratio = std::min(a.min_pivot_ratio, b.min_pivot_ratio);
+  a.max_drift = std::max(a.max_drift, b.max_drift);
+  a.sparse = a.sparse || b.sparse;
+  a.t_end = b.t_end;
+  for (const std::string& w : b.warnings) a.warnings.push_back(w);
+}
+
+// The tension of chain k's span in `modes` at s (its mode's least-squares multiplier).
+double Switcher::tension_in(const std::vector<int>& modes, size_t k, const State& s) {
+  Mode md(chain_mode_model(m_, modes), inner_);
+  return md.reactions(s.t, s.q0, s.q1)[md.tension[k]];
+}
+
+// A perfectly inelastic engagement: s's positions put on the rows of `modes`, its velocities
+// projected on them in the mass metric; returns chain k's impulse (N s) and adds the kinetic
+// energy lost to the dissipated energy.
+double Switcher::impact(State& s, const std::vector<int>& modes, size_t k) {
+  const Model mm = chain_mode_model(m_, modes);
+  s.q0 = assemble(mm, s.q0, s.t, {}, 1e-13);
+  const int n = mm.n1, rows = mm.m1;
+  MatrixXd K = MatrixXd::Zero(n + rows, n + rows);
+  const MatrixXd M = mass_matrix(mm);
+  MatrixXd A(rows, n);
+  VectorXd b(rows), rhs(n + rows);
+  velocity_jacobian(mm, s.q0, s.t, A, b);
+  K.topLeftCorner(n, n) = M;
+  K.topRightCorner(n, rows) = A.transpose();
+  K.bottomLeftCorner(rows, n) = A;
+  rhs << M * s.q1, b;
+  const VectorXd x = K.fullPivLu().solve(rhs);
+  const double before = kinetic_energy(mm, s.q1);
+  s.q1 = x.head(n);
+  off_[kDissipated] += before - kinetic_energy(mm, s.q1);
+  return x[n + mm.constraints[mm.chains[chains_[k]].constraint].row1];
+}
+
+// Chain k engages span `span` at s (an impact); true if it then pulls (else it stays slack).
+bool Switcher::engage(State& s, size_t k, int span, const char* why) {
+  const std::vector<int> modes = modes_with(k, span);
+  const double e0 = off_[kDissipated];
+  const double P = impact(s, modes, k);
+  const double T = tension_in(modes, k, s);
+  note("chain '" + chain(k).name + "': the " + kSpanName[span] + " span " + why +
+       " at t = " + num(s.t) + " s: perfectly inelastic engagement, impulse " + num(P) +
+       " N s, kinetic energy lost " + num(off_[kDissipated] - e0) + " J; tension then " + num(T) +
+       " N" + (T >= -tension_tol() ? "" : " (< 0: it does not hold, the chain stays slack)"));
+  if (T < -tension_tol()) return false;
+  spans_[k] = span;
+  return true;
+}
+
+void Switcher::start(State& s) {
+  for (size_t k = 0; k < chains_.size(); ++k) {
+    const ChainLoad& c = chain(k);
+    const Lengths L = lengths(m_, c, s.q0, s.q1, s.t);
+    for (int sp : {0, 1})
+      if (L.gap[sp] < -span_tol(c, sp))
+        fail(k, s.t,
+             std::string("the ") + kSpanName[sp] + " span is longer than its rest length by " +
+                 num(-L.gap[sp]) + " m in the initial state");
+    spans_[k] = -1;
+    if (L.gap[0] <= span_tol(c, 0) && tension_in(modes_with(k, 0), k, s) >= -tension_tol()) {
+      spans_[k] = 0;
+    } else if (L.gap[1] <= span_tol(c, 1)) {
+      State t = s;
+      const std::vector<int> modes = modes_with(k, 1);
+      impact(t, modes, k);
+      if (tension_in(modes, k, t) >= -tension_tol()) spans_[k] = 1, s = t;
+    }
+    if (spans_[k] < 0) slack_since_ = s.t;
+    note("chain '" + c.name + "': " +
+         (spans_[k] < 0 ? std::string("slack") : std::string(kSpanName[spans_[k]]) + " span taut") +
+         " at t = " + num(s.t) + " s (start)");
+  }
+}
+
+// The event at the end of a leg: which chain, and its new mode.
+void Switcher::switch_at(State& s) {
+  Mode md(chain_mode_model(m_, spans_), inner_);
+  const VectorXd r = md.reactions(s.t, s.q0, s.q1);
+  size_t which = 0;
+  double worst = 1e300;
+  int cause = 0;  // 0 the taut span's tension, 1 the other span's length, 2 a slack span's length
+  for (size_t k = 0; k < chains_.size(); ++k) {
+    const ChainLoad& c = chain(k);
+    const Lengths L = lengths(m_, c, s.q0, s.q1, s.t);
+    const int sp = spans_[k];
+    auto consider = [&](double g, int why) {
+      if (g < worst) worst = g, which = k, cause = why;
+    };
+    if (sp >= 0) {
+      consider(r[md.tension[k]] / tension_ref() + kSpanTol, 0);
+      if (watch_[k]) consider(L.gap[1 - sp] / rest(c, 1 - sp) + kSpanTol, 1);
+    } else {
+      consider(std::min(L.gap[0] / rest(c, 0), L.gap[1] / rest(c, 1)) + kSpanTol, 2);
+    }
+  }
+  const ChainLoad& c = chain(which);
+  const int sp = spans_[which];
+  if (s.t - last_switch_ <= 1e-12 * std::max(1.0, std::abs(s.t))) {
+    if (++same_instant_ > kChatter)
+      fail(which, s.t,
+           "the span switching chatters (" + std::to_string(same_instant_) +
+               " switches at one instant): the mechanism cannot be handled by the inextensible "
+               "model; use fidelity unilateral");
+  } else {
+    same_instant_ = 0;
+  }
+  last_switch_ = s.t;
+  if (++switches_ > kMaxSwitches)
+    fail(which, s.t,
+         "more than " + std::to_string(kMaxSwitches) +
+             " span switches: the switching chatters; use fidelity unilateral");
+  if (cause == 1) both_taut(which, s.t);
+  if (cause == 0) {
+    note("chain '" + c.name + "': the " + kSpanName[sp] +
+         " span's tension reaches 0 at t = " + num(s.t) + " s");
+    spans_[which] = -1;
+    const Lengths L = lengths(m_, c, s.q0, s.q1, s.t);
+    if (L.gap[1 - sp] <= 10 * span_tol(c, 1 - sp) && engage(s, which, 1 - sp, "takes over")) return;
+    note("chain '" + c.name + "': slack from t = " + num(s.t) + " s");
+    slack_since_ = s.t;
+    return;
+  }
+  const Lengths L = lengths(m_, c, s.q0, s.q1, s.t);
+  const int span = L.gap[0] <= L.gap[1] ? 0 : 1;
+  note("chain '" + c.name + "': slack interval " + num(slack_since_) + " to " + num(s.t) + " s");
+  engage(s, which, span, "reaches its rest length");
+}
+
+Trajectory Switcher::run(const State& initial) {
+  const int N = o_.samples;
+  out_ = labelled_trajectory(m_, RunKind::forward);
+  out_.time = VectorXd::Zero(N);
+  out_.q0 = MatrixXd::Zero(N, m_.n0);
+  out_.q1 = out_.a1 = MatrixXd::Zero(N, m_.n1);
+  out_.efforts = MatrixXd::Zero(N, m_.n_inputs());
+  out_.reactions = MatrixXd::Zero(N, m_.n_reactions());
+  out_.residuals = MatrixXd::Zero(N, 2);
+  out_.kinetic = out_.potential = out_.input_work = out_.load_work = out_.constraint_work =
+      out_.dissipated = VectorXd::Zero(N);
+  State s = initial;
+  s.t = o_.t0;
+  start(s);
+  const double h = (o_.t1 - o_.t0) / (N - 1);
+  while (filled_ < N) {
+    Mode md(chain_mode_model(m_, spans_), inner_);
+    start_segment(s);
+    if (!(event(md, s.t, s.q0, s.q1) > 0)) {  // the mode does not hold from its start
+      switch_at(s);
+      continue;
+    }
+    // a leg to the next output time, or over the rest of the grid from an output time
+    auto near = [&](int k) {
+      return k >= 0 && std::abs(s.t - grid(k)) <=
+                           std::max(1e-9 * h, 1e3 * kTimeResolution * std::max(1.0, std::abs(s.t)));
+    };
+    Trajectory r;
+    if (near(filled_)) {
+      s.t = grid(filled_);
+      r = leg(md, s, o_.t1, N - filled_);
+    } else if (near(filled_ - 1)) {
+      s.t = grid(filled_ - 1);
+      r = leg(md, s, o_.t1, N - filled_ + 1);
+    } else {
+      r = leg(md, s, grid(filled_), 2);
+    }
+    check_both_taut(md.model, r);
+    append(r);
+    const Eigen::Index e = r.time.size() - 1;
+    s.t = r.time[e];
+    s.q0 = r.q0.row(e).transpose();
+    s.q1 = r.q1.row(e).transpose();
+    if (r.stats.stopped_by_event) switch_at(s);
+  }
+  return std::move(out_);
+}
+
+}  // namespace
+
+bool switches_chains(const Model& m) {
+  return std::any_of(m.chains.begin(), m.chains.end(), [](const ChainLoad& c) {
+    return c.fidelity == ChainFidelity::inextensible && !c.mode_fixed;
+  });
+}
+
+Trajectory forward_chain_switching(const Model& m, const State& initial, const ForwardOptions& o) {
+  for (const ChainLoad& c : m.chains)
+    if (c.fidelity == ChainFidelity::inextensible &&
+        (o.integrator == Integrator::cvode_adams || o.integrator == Integrator::baumgarte))
+      throw Error("chain '" + c.name + "' (inextensible): the integrator " +
+                      to_string(o.integrator) +
+                      " does not project on the constraints, and the span's length must be held "
+                      "there: use cvode_bdf, dopri5, erk6, erk8 or rk4",
+                  c.name);
+  if (o.stop_when)
+    throw Error("forward dynamics of '" + m.name +
+                    "': a stop condition (stop_when) with inextensible chains is not supported "
+                    "(the span switching uses it)",
+                m.name);
+  return Switcher(m, o).run(initial);
+}
+
+}  // namespace mo2d::detail

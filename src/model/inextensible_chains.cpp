@@ -1,0 +1,165 @@
+// Stage 8b of build_model, inextensible chains (ChainFidelity::inextensible; docs/reduction.md,
+// "The inextensible chain"), and the models of one span mode that forward_dynamics switches
+// between (src/forward/chain_switching.cpp). The limit k -> infinity of a taut span whose tension
+// T stays finite holds its material length (dynamics/chain.hpp, with the wrap term) at the rest
+// length:
+//
+//   psi_s(q0) = l_s(c_a, c_b, theta_a, theta_b) - rest_s = 0,     s = upper or lower
+//
+// a user position constraint (constraints/user.hpp) on the coordinates of the centres' nodes and
+// of the unwrapped angles theta_a, theta_b, whose Jets give the velocity row A = d l_s / d q0 and
+// the acceleration bias exactly. The span's force on the mechanism is -T dl_s/dq0, the
+// constraint's -A^T lambda: T = lambda, reported as the reaction "name.upper.tension" or
+// "name.lower.tension" (factor +1; the other span's reaction has factor 0, it is slack). One row
+// per chain in the built model (the upper span); chain_mode_model replaces it by the lower span's
+// or removes it (slack).
+#include <algorithm>
+
+#include "dynamics/chain.hpp"
+#include "mo2d/error.hpp"
+#include "model/build_stages.hpp"
+#include "model/point_jets.hpp"
+
+namespace mo2d::build {
+namespace {
+
+// The user position row of span `span` (0 upper, 1 lower) of chain c (initialized).
+Constraint::UserPosition span_row(const Model& m, const ChainLoad& c, int span) {
+  Constraint::UserPosition u;
+  const PointArgs a = point_args(m, c.a, u.args), b = point_args(m, c.b, u.args);
+  auto theta_arg = [&](int var) {
+    if (var < 0) return -1;
+    const int at = static_cast<int>(u.args.size());
+    VarRef r = m.rate_refs[var];
+    r.var = var;
+    u.args.push_back(r);
+    return at;
+  };
+  const int ta = theta_arg(c.theta_a), tb = theta_arg(c.theta_b);
+  const double rest = span == 0 ? c.rest_upper : c.rest_lower;
+  u.psi = [c, a, b, ta, tb, span, rest](std::span<const Jet> x, Jet t) {
+    const JetPoint pa = point_jet(a, x), pb = point_jet(b, x);
+    const Jet zero(0.0);
+    const detail::ChainInput<Jet> in{pa.x,
+                                     pa.y,
+                                     pb.x,
+                                     pb.y,
+                                     zero,
+                                     zero,
+                                     zero,
+                                     zero,
+                                     ta < 0 ? zero : x[ta],
+                                     tb < 0 ? zero : x[tb],
+                                     zero,
+                                     zero};
+    const detail::Spans<Jet> sp = detail::chain_spans(c, in, t.v);
+    return (span == 0 ? sp.upper.length : sp.lower.length) - Jet(rest);  // l_s - rest_s
+  };
+  return u;
+}
+
+void set_factors(Model& m, const ChainLoad& c) {
+  for (Reaction& r : m.reactions) {
+    if (r.label == c.name + ".upper.tension") r.factor = c.active_span == 0 ? 1 : 0;
+    if (r.label == c.name + ".lower.tension") r.factor = c.active_span == 1 ? 1 : 0;
+  }
+}
+
+// Index maps after erasing reactions: old index -> new (-1: erased).
+void renumber_reactions(Model& m, const std::vector<int>& map) {
+  for (ReducedSpring& s : m.reduced_springs) s.reaction = map[s.reaction];
+  for (FrictionLoad& f : m.frictions)
+    if (f.reaction >= 0) f.reaction = map[f.reaction];
+  for (MergeEdge& e : m.merge_edges)
+    if (e.reaction >= 0) e.reaction = map[e.reaction];
+}
+
+// Removes chain c's row (the chain slack): its constraint, rows, labels and reactions.
+void remove_row(Model& m, ChainLoad& c) {
+  const int ci = c.constraint;
+  const Constraint k = m.constraints[ci];
+  m.position_row_labels.erase(m.position_row_labels.begin() + k.row0,
+                              m.position_row_labels.begin() + k.row0 + k.nrow0);
+  m.velocity_row_labels.erase(m.velocity_row_labels.begin() + k.row1,
+                              m.velocity_row_labels.begin() + k.row1 + k.nrow1);
+  m.m0 -= k.nrow0;
+  m.m1 -= k.nrow1;
+  m.dof += k.nrow1;
+  m.constraints.erase(m.constraints.begin() + ci);
+  for (Constraint& o : m.constraints) {
+    if (o.row0 > k.row0) o.row0 -= k.nrow0;
+    if (o.row1 > k.row1) o.row1 -= k.nrow1;
+  }
+  for (ChainLoad& o : m.chains)
+    if (o.constraint > ci) --o.constraint;
+  for (ReducedSpring& s : m.reduced_springs)
+    if (s.constraint > ci) --s.constraint;
+  for (FrictionLoad& f : m.frictions)
+    if (f.slider > ci) --f.slider;
+  std::vector<int> map(m.reactions.size(), -1);
+  std::vector<Reaction> kept;
+  for (size_t j = 0; j < m.reactions.size(); ++j) {
+    Reaction r = m.reactions[j];
+    if (r.row >= k.row1 && r.row < k.row1 + k.nrow1) continue;
+    if (r.row >= k.row1 + k.nrow1) r.row -= k.nrow1;
+    map[j] = static_cast<int>(kept.size());
+    kept.push_back(r);
+  }
+  m.reactions = std::move(kept);
+  renumber_reactions(m, map);
+  for (TreeNode& n : m.tree) {
+    std::vector<int> rows;
+    for (int r : n.rows)
+      if (r < k.row1 || r >= k.row1 + k.nrow1) rows.push_back(r >= k.row1 ? r - k.nrow1 : r);
+    n.rows = std::move(rows);
+  }
+  c.constraint = -1;
+}
+
+}  // namespace
+
+bool add_inextensible_chains(Model& m) {
+  bool any = false;
+  for (ChainLoad& c : m.chains) {
+    if (c.fidelity != ChainFidelity::inextensible) continue;
+    c.active_span = 0;
+    c.constraint =
+        add_constraint(m, Constraint{.name = c.name, .owner = 0, .def = span_row(m, c, 0)}, 1, 1,
+                       {".span"}, {".span_rate"});
+    const int row = m.constraints[c.constraint].row1;
+    m.reactions.push_back({c.name + ".upper.tension", row, 1});  // T = lambda
+    m.reactions.push_back({c.name + ".lower.tension", row, 0});
+    any = true;
+  }
+  return any;
+}
+
+}  // namespace mo2d::build
+
+namespace mo2d::detail {
+
+Model chain_mode_model(const Model& m, const std::vector<int>& spans) {
+  Model out = m;
+  size_t k = 0;
+  for (ChainLoad& c : out.chains) {
+    if (c.fidelity != ChainFidelity::inextensible) continue;
+    if (k >= spans.size()) throw Error("chain_mode_model: too few span modes", c.name);
+    const int s = spans[k++];
+    c.mode_fixed = true;
+    if (s == c.active_span) continue;
+    if (s < 0) {
+      build::remove_row(out, c);
+      c.active_span = -1;
+      continue;
+    }
+    if (c.constraint < 0)
+      throw Error("chain_mode_model: a slack model cannot take a span back", c.name);
+    c.active_span = s;
+    std::get<Constraint::UserPosition>(out.constraints[c.constraint].def) =
+        build::span_row(out, c, s);
+    build::set_factors(out, c);
+  }
+  return out;
+}
+
+}  // namespace mo2d::detail
