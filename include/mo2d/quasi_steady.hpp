@@ -16,8 +16,10 @@
 // with the quasi-steady manifold (its rate the slow manifold's, z2 = dT/dt, not the thesis's
 // z2 = 0, which a state in positions and velocities cannot follow without a jump every step).
 #include <Eigen/Core>
+#include <atomic>
 #include <cmath>
 #include <type_traits>
+#include <vector>
 
 #include "mo2d/model.hpp"
 
@@ -32,6 +34,10 @@ struct ForwardData;
 // back: held_of).
 struct HeldLength {
   double length = 0, rate = 0, t0 = 0, prev_length = 0, prev_t = NAN;
+  // Whether a forward run holds the cell (QuasiSteadyRun): two runs at once on one Model (or on
+  // copies, which share the cell) would move each other's lengths.
+  std::atomic<bool> in_use{false};
+  // The held length at time t (m).
   double at(double t) const { return length + rate * (t - t0); }
 };
 static_assert(std::is_standard_layout_v<HeldLength>);
@@ -54,6 +60,24 @@ bool has_quasi_steady(const Model& m);
 void reset_quasi_steady(const Model& m);
 
 namespace detail {
+// A forward run's hold on the quasi-steady springs of a Model, for the run's lifetime: the
+// constructor claims every held-length cell (an Error naming the model if another run holds one),
+// the destructor puts them back to the rest lengths and releases them, also when the run throws,
+// so that inverse dynamics, modes and the next run see the Model as built.
+class QuasiSteadyRun {
+ public:
+  // Claims m's cells (none: nothing to do).
+  explicit QuasiSteadyRun(const Model& m);
+  // Resets and releases the cells.
+  ~QuasiSteadyRun();
+  QuasiSteadyRun(const QuasiSteadyRun&) = delete;
+  QuasiSteadyRun& operator=(const QuasiSteadyRun&) = delete;
+
+ private:
+  const Model& m_;
+  std::vector<HeldLength*> held_;
+};
+
 // Project (q0, q1) on the constraints with the quasi-steady lengths settled at t (above).
 // Throws Error naming the spring if the fixed point does not converge in 30 passes.
 void settle_quasi_steady(ForwardData& d, double t, Eigen::VectorXd& q0, Eigen::VectorXd& q1,

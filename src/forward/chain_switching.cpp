@@ -24,6 +24,7 @@
 // integrated energy terms carry over from segment to segment.
 #include <Eigen/LU>
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <cstdio>
 
@@ -120,6 +121,7 @@ class Switcher {
   double off_[kEnergyTerms] = {0, 0, 0, 0};
   int same_instant_ = 0, switches_ = 0;
   double last_switch_ = -1e300, slack_since_ = 0;
+  std::chrono::steady_clock::time_point started_ = std::chrono::steady_clock::now();
 
   double tension_ref() const { return std::max(t_ref_, 1e-3); }
   double tension_tol() const { return kSpanTol * tension_ref(); }
@@ -202,6 +204,20 @@ void Switcher::check_both_taut(const Model& mm, const Trajectory& r) {
 
 Trajectory Switcher::leg(Mode& md, const State& s, double t1, int samples) {
   ForwardOptions o = inner_;
+  // the run's budgets, not each leg's: what the legs before used is gone
+  const double used_seconds =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - started_).count();
+  const long steps_left = static_cast<long>(inner_.max_steps) - out_.stats.steps;
+  if (steps_left < 1 || used_seconds >= inner_.max_seconds)
+    throw Error("forward dynamics of '" + m_.name + "': the run's " +
+                    (steps_left < 1
+                         ? "step budget (max_steps " + std::to_string(inner_.max_steps)
+                         : "wall-time budget (max_seconds " + std::to_string(inner_.max_seconds)) +
+                    ") ran out at t = " + std::to_string(s.t) + " s after " +
+                    std::to_string(switches_) + " chain span switches",
+                "max_steps");
+  o.max_steps = static_cast<int>(steps_left);
+  o.max_seconds = inner_.max_seconds - used_seconds;
   o.t0 = s.t;
   o.t1 = t1;
   o.samples = samples;
@@ -447,6 +463,11 @@ Trajectory forward_chain_switching(const Model& m, const State& initial, const F
                       " does not project on the constraints, and the span's length must be held "
                       "there: use cvode_bdf, dopri5, erk6, erk8 or rk4",
                   c.name);
+  for (const ReducedSpring& s : m.reduced_springs)
+    if (s.held_length)  // each leg would restart the held lengths from the rest lengths
+      throw Error("spring '" + s.spring.name +
+                      "' (reduce: quasi_steady) with inextensible chains is not supported yet",
+                  s.spring.name);
   if (o.stop_when)
     throw Error("forward dynamics of '" + m.name +
                     "': a stop condition (stop_when) with inextensible chains is not supported "

@@ -363,6 +363,7 @@ Trajectory forward_dynamics(const Model& m, const State& initial, const ForwardO
   const double start = detail::cpu_seconds();
   State s0 = initial;
   s0.t = o.t0;
+  const detail::QuasiSteadyRun held(m);  // resets the held lengths however the run ends
   if (has_quasi_steady(m)) detail::start_quasi_steady(d, s0.t, s0.q0, s0.q1);
   switch (o.integrator) {
     case Integrator::rk4:
@@ -396,7 +397,6 @@ Trajectory forward_dynamics(const Model& m, const State& initial, const ForwardO
   r.reactions.conservativeResize(used, Eigen::NoChange);
   r.stats = d.stats;
   detail::reduced_spring_slack(m, r, r.stats.warnings);
-  reset_quasi_steady(m);
   return r;
 }
 

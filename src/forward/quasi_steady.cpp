@@ -70,8 +70,13 @@ bool has_quasi_steady(const Model& m) {
 }
 
 void reset_quasi_steady(const Model& m) {
-  for (const ReducedSpring& s : m.reduced_springs)
-    if (s.held_length) held_of(s) = HeldLength{.length = s.spring.rest_length};
+  for (const ReducedSpring& s : m.reduced_springs) {
+    if (!s.held_length) continue;
+    HeldLength& h = held_of(s);
+    h.length = s.spring.rest_length;
+    h.rate = h.t0 = h.prev_length = 0;
+    h.prev_t = NAN;
+  }
 }
 
 double quasi_steady_length(const Model& m, const ReducedSpring& s, double T,
@@ -82,6 +87,28 @@ double quasi_steady_length(const Model& m, const ReducedSpring& s, double T,
 }
 
 namespace detail {
+
+QuasiSteadyRun::QuasiSteadyRun(const Model& m) : m_(m) {
+  for (const ReducedSpring& s : m.reduced_springs) {
+    if (!s.held_length) continue;
+    HeldLength& h = held_of(s);
+    if (h.in_use.exchange(true)) {
+      for (HeldLength* other : held_) other->in_use = false;
+      throw Error("forward dynamics of '" + m.name + "': the quasi-steady spring '" +
+                      s.spring.name +
+                      "' is held by another forward run on this model (or a copy of it): the "
+                      "held lengths are the model's, one run at a time; build a model per thread",
+                  s.spring.name);
+    }
+    held_.push_back(&h);
+  }
+}
+
+QuasiSteadyRun::~QuasiSteadyRun() {
+  reset_quasi_steady(m_);
+  for (HeldLength* h : held_) h->in_use = false;
+}
+
 namespace {
 
 // One pass: T at the state, each held length moved to L_law(T) at t (its rate kept); returns

@@ -42,7 +42,8 @@ void add_reduced_spring(const SpringLoad& s, int owner, Model& m, bool quasi_ste
   if (c.args.empty()) throw Error(what + " joins two fixed points", s.name);
   ReducedSpring r;
   if (quasi_steady) {
-    const auto held = std::make_shared<HeldLength>(HeldLength{.length = s.rest_length});
+    const auto held = std::make_shared<HeldLength>();
+    held->length = s.rest_length;
     r.held_length = std::shared_ptr<double>(held, &held->length);  // aliasing: shares the cell
     c.psi = [a, b, held](std::span<const Jet> x, Jet t) {
       const JetPoint pa = point_jet(a, x), pb = point_jet(b, x);

@@ -317,3 +317,42 @@ TEST(QuasiSteady, BadInputIsRefusedByName) {
 
 }  // namespace
 }  // namespace mo2d
+
+namespace mo2d {
+namespace {
+
+double held_length_of(const Model& m) {
+  for (const ReducedSpring& s : m.reduced_springs)
+    if (s.held_length) return held_of(s).length;
+  return NAN;
+}
+
+// The held lengths are the model's: a run that throws leaves them at the rest length (the next
+// run, an inverse run or modes see the model as built), and a second run holding them at the
+// same time is refused by name instead of moving the first one's lengths.
+TEST(QuasiSteady, HeldLengthsAreResetWhenARunThrowsAndClaimedByOneRun) {
+  const Scene scene = parse_scene(msm_text(), "qss.yaml");
+  const Model m = build_scene_model(scene);
+  const double rest = held_length_of(m);
+  ForwardOptions o = forward_options(scene, m);
+  o.integrator = Integrator::dopri5;
+  o.max_steps = 5;  // the budget runs out after the lengths have moved
+  EXPECT_THROW(forward_dynamics(m, initial_state(scene, m), o), Error);
+  EXPECT_EQ(held_length_of(m), rest);
+  {
+    const detail::QuasiSteadyRun first(m);
+    const Model copy = m;  // shares the cells
+    try {
+      const detail::QuasiSteadyRun second(copy);
+      ADD_FAILURE() << "a second run held the same cells";
+    } catch (const Error& e) {
+      EXPECT_NE(std::string(e.what()).find("held by another forward run"), std::string::npos)
+          << e.what();
+    }
+  }
+  o.max_steps = 1000000;
+  EXPECT_NO_THROW(forward_dynamics(m, initial_state(scene, m), o));  // released
+}
+
+}  // namespace
+}  // namespace mo2d
