@@ -23,6 +23,8 @@ int forward(const SceneOptions& o) {
   run.progress = [&progress](double t) { progress.update(t); };
   run.monitor = [&progress](const RunProgress& p) { progress.report(p); };
   Trajectory r = forward_dynamics(model, initial, run);
+  if (scene.run.accuracy == 0 && !scene.run.method_set)  // no method named: kDefaultAccuracy
+    r.stats.method = "default " + r.stats.method;
   add_output_columns(model, r, scene.outputs);  // the columns the scene asks for
   progress.finish();
   std::printf("mo2d forward dynamics: %s\n", model.name.c_str());

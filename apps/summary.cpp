@@ -83,18 +83,20 @@ std::string inverse_summary(const SceneOptions& o, const Scene& s, const Model& 
 std::string forward_summary(const SceneOptions& o, const Scene& s, const Model& m,
                             const Trajectory& r, const ForwardOptions& run) {
   json j = header(o, s, m, "forward", r);
-  j["run"] = {{"t0", run.t0},
-              {"duration", s.run.duration},
-              {"samples", run.samples},
-              {"integrator", to_string(run.integrator)},
-              {"formulation", to_string(run.formulation)},
-              {"rtol", run.rtol},
-              {"atol", run.atol},
-              {"step", run.step},
-              {"accuracy", run.accuracy},
-              {"max_steps", run.max_steps},
-              {"max_seconds", run.max_seconds},
-              {"max_memory", run.max_memory}};
+  j["run"] = {
+      {"t0", run.t0},
+      {"duration", s.run.duration},
+      {"samples", run.samples},
+      {"integrator", r.stats.integrator.empty() ? to_string(run.integrator) : r.stats.integrator},
+      {"formulation", to_string(run.formulation)},
+      {"rtol", run.rtol},
+      {"atol", run.atol},
+      {"step", run.step},
+      {"accuracy", run.accuracy},
+      {"method", r.stats.method},
+      {"max_steps", run.max_steps},
+      {"max_seconds", run.max_seconds},
+      {"max_memory", run.max_memory}};
   j["columns"] = columns(m, r);
   j["efforts"] = peaks(r.input_labels, r.efforts, r.time);
   j["reactions"] = peaks(r.reaction_labels, r.reactions, r.time);

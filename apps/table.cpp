@@ -55,8 +55,10 @@ void print_forward_table(const Model& model, const Trajectory& r, const ForwardO
   std::printf(
       "  integrator %s, formulation %s, %s linear algebra: %ld steps, %ld right-hand sides, %ld "
       "projections\n",
-      to_string(run.integrator), to_string(run.formulation), r.stats.sparse ? "sparse" : "dense",
-      r.stats.steps, r.stats.rhs_evaluations, r.stats.projections);
+      r.stats.integrator.empty() ? to_string(run.integrator) : r.stats.integrator.c_str(),
+      to_string(run.formulation), r.stats.sparse ? "sparse" : "dense", r.stats.steps,
+      r.stats.rhs_evaluations, r.stats.projections);
+  if (!r.stats.method.empty()) std::printf("  method: %s\n", r.stats.method.c_str());
   std::printf("  max constraint residual: position %.2e m, velocity %.2e\n",
               r.residuals.col(0).maxCoeff(), r.residuals.col(1).maxCoeff());
   const Eigen::Index n = r.time.size() - 1;

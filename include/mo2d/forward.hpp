@@ -15,6 +15,7 @@
 // The workspace of these evaluations, and forward_accelerations (one evaluation at a given state):
 // mo2d/forward_data.hpp.
 #include <Eigen/Core>
+#include <cmath>
 #include <functional>
 #include <string>
 #include <utility>
@@ -162,6 +163,31 @@ extern const double kMinAccuracy, kMaxAccuracy;
 // "Accuracy asked for"). A calibration, not a guarantee: the error of a run grows with its
 // duration and with the mechanism's sensitivity, so check a critical run with a tighter accuracy.
 ForwardOptions options_for_accuracy(const Model& m, ForwardOptions o);
+
+// The accuracy a scene's forward run asks for when it names no method (no run.integrator, rtol,
+// atol, step or accuracy; `mo2d forward` without those flags): docs/scene-format.md.
+inline constexpr double kDefaultAccuracy = 1e-6;
+
+// The method forward_dynamics runs for o.accuracy > 0 from the state s, and why
+// (src/forward/method_choice.cpp). Stiffness test: |lambda|max, the spectral radius of the
+// Jacobian of the right-hand side d(q0, q1)/dt at s (power iteration on finite differences of
+// the accelerations, a few dozen evaluations), against the step the explicit method of
+// options_for_accuracy needs for the accuracy: an explicit method is stable for steps
+// h <= kStabilityBound / |lambda|max, so over T = t1 - t0 it needs |lambda|max T / kStabilityBound
+// steps for stability and T / h_accuracy for the accuracy. When the first exceeds
+// kStiffRatio times the second (the explicit method would crawl at its stability limit, or rk4's
+// fixed step would diverge), the mechanism is stiff there and cvode_bdf runs with
+// rtol = atol = accuracy / 1000; otherwise the explicit method of options_for_accuracy.
+struct MethodChoice {
+  ForwardOptions options{};      // o with the integrator and tolerances chosen
+  double spectral_radius = NAN;  // |lambda|max at s (1/s); NaN: not estimated
+  double stability_steps = 0;    // |lambda|max T / kStabilityBound
+  double accuracy_steps = 0;     // T / h_accuracy of the explicit method
+  bool stiff = false;
+  std::string reason{};  // "accuracy 1e-06, not stiff (|lambda|max T = 31 ...): dopri5 ..."
+};
+inline constexpr double kStabilityBound = 2.5, kStiffRatio = 4;
+MethodChoice choose_method(const Model& m, const State& s, const ForwardOptions& o);
 
 // Throws Error (element: the option's name, "t0", "t1", "samples", "step", "max_steps", ...)
 // when the options cannot give a correct run of m: a time grid double precision does not

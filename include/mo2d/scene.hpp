@@ -66,6 +66,9 @@ struct RunSettings {
   // forward: > 0, the accuracy asked for (ForwardOptions::accuracy): mo2d picks the integrator and
   // its tolerances, and integrator, rtol, atol and step are not used; 0: not asked for
   double accuracy = 0;
+  // forward: run.integrator, rtol, atol or step written (in the scene or as a flag). Without them
+  // and without accuracy, a forward run asks for kDefaultAccuracy (forward_options).
+  bool method_set = false;
   int max_steps = kDefaultMaxSteps;         // forward: step budget of the run
   double max_seconds = kDefaultMaxSeconds;  // wall-clock budget of the run
   double max_memory = kDefaultMaxMemory;    // bytes of dense matrices and results
@@ -178,6 +181,9 @@ InverseOptions inverse_options(const Scene& scene);
 // Efforts are ordered like Model::inputs (inputs without an effort get none: zero); a controller
 // gives its input the PD law, with the exact feed-forward from inverse dynamics of the
 // controllers' references if asked (all controllers asking it together must prescribe the DOF).
+// A scene that names no method (run.integrator, rtol, atol, step) nor an accuracy asks for
+// kDefaultAccuracy; forward_dynamics then chooses the method (choose_method: explicit unless
+// stiff at the initial state).
 ForwardOptions forward_options(const Scene& scene, const Model& model);
 // check_inverse_options / check_forward_options (and the model's magnitudes), a refusal reported
 // as a SceneError at the line of the run key it names (run.t0, run.step, ...; the file alone for

@@ -33,6 +33,9 @@ struct RunStats {
   double min_pivot_ratio = 1;        // smallest (sigma_min / sigma_max)^2 of A seen at output times
   double max_drift = 0;              // largest position drift at output times (see drift_tolerance)
   bool sparse = false;               // forward runs: the sparse linear algebra was used
+  // forward runs: the integrator that ran, and when it was chosen for an accuracy
+  // (ForwardOptions::accuracy, choose_method) the choice and its reason
+  std::string integrator{}, method{};
 };
 
 // The result of a run (inverse_dynamics or forward_dynamics), one row per sample: the state,

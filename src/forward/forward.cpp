@@ -337,17 +337,30 @@ void check_forward_options(const Model& m, const ForwardOptions& o) {
 }
 
 Trajectory forward_dynamics(const Model& m, const State& initial, const ForwardOptions& options) {
-  const ForwardOptions o = options_for_accuracy(m, options);
-  check_forward_options(m, o);
+  check_forward_options(m, options_for_accuracy(m, options));
   if (m.n1 == 0)  // nothing to integrate (a scene without bodies, or every body fixed)
     throw Error("forward dynamics of '" + m.name +
                     "': the mechanism has no moving parts (no quasi-velocities)",
                 m.name);
   if (initial.q0.size() != m.n0 || initial.q1.size() != m.n1)
     throw Error("forward dynamics: the initial state does not match the model's variables", m.name);
-  if (detail::switches_chains(m)) return detail::forward_chain_switching(m, initial, o);
+  State at_t0 = initial;
+  at_t0.t = options.t0;
+  const double start = detail::cpu_seconds();  // the run's CPU time includes the choice
+  // the integrator for an accuracy asked for: explicit unless stiff at the initial state
+  const MethodChoice choice = choose_method(m, at_t0, options);
+  const ForwardOptions& o = choice.options;
+  if (choice.stiff) check_forward_options(m, o);
+  if (detail::switches_chains(m)) {  // legs between span switches, each with the chosen method
+    Trajectory r = detail::forward_chain_switching(m, initial, o);
+    r.stats.integrator = to_string(o.integrator);
+    r.stats.method = choice.reason;
+    return r;
+  }
   ForwardData d(m, o);
   d.stats.sparse = d.sparse_engine() != nullptr;
+  d.stats.integrator = to_string(o.integrator);
+  d.stats.method = choice.reason;
   Trajectory r = detail::labelled_trajectory(m, RunKind::forward);
   const int N = o.samples;
   r.efforts = MatrixXd::Zero(N, m.n_inputs());
@@ -360,7 +373,6 @@ Trajectory forward_dynamics(const Model& m, const State& initial, const ForwardO
       VectorXd::Zero(N);
   r.residuals = MatrixXd::Zero(N, 2);
   Recorder rec{m, r, d};
-  const double start = detail::cpu_seconds();
   State s0 = initial;
   s0.t = o.t0;
   const detail::QuasiSteadyRun held(m);  // resets the held lengths however the run ends

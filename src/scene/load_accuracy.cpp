@@ -16,7 +16,10 @@ void read_accuracy(const Reader& r, const YAML::Node& node, RunSettings& run) {
   const char* method_keys[] = {"integrator", "rtol", "atol", "step"};
   if (!node["accuracy"].IsDefined()) {
     for (const char* k : method_keys)
-      if (node[k].IsDefined()) run.accuracy = 0;
+      if (node[k].IsDefined()) {
+        run.accuracy = 0;
+        run.method_set = true;  // no default accuracy either
+      }
     return;
   }
   for (const char* k : method_keys)

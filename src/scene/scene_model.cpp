@@ -181,7 +181,11 @@ ForwardOptions forward_options(const Scene& scene, const Model& model) {
   o.rtol = scene.run.rtol;
   o.atol = scene.run.atol;
   o.step = scene.run.step;
-  o.accuracy = scene.run.accuracy;
+  // the accuracy asked for; none and no method either: the default accuracy (the method then
+  // chosen by forward_dynamics: choose_method)
+  o.accuracy = scene.run.accuracy > 0 ? scene.run.accuracy
+               : scene.run.method_set ? 0
+                                      : kDefaultAccuracy;
   o.max_steps = scene.run.max_steps;
   o.max_seconds = scene.run.max_seconds;
   o.max_memory = scene.run.max_memory;
