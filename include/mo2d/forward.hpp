@@ -183,10 +183,16 @@ struct MethodChoice {
   double spectral_radius = NAN;  // |lambda|max at s (1/s); NaN: not estimated
   double stability_steps = 0;    // |lambda|max T / kStabilityBound
   double accuracy_steps = 0;     // T / h_accuracy of the explicit method
-  bool stiff = false;
+  bool stiff = false;            // stability_steps > kStiffRatio accuracy_steps: cvode_bdf chosen
   std::string reason{};  // "accuracy 1e-06, not stiff (|lambda|max T = 31 ...): dopri5 ..."
 };
-inline constexpr double kStabilityBound = 2.5, kStiffRatio = 4;
+// The stability limit |lambda|max h of the explicit methods (about 2.5 to 3.3 on the real axis
+// for rk4, dopri5 and the higher orders: the smallest, rounded down).
+inline constexpr double kStabilityBound = 2.5;
+// How many times more steps than the accuracy needs make a mechanism stiff.
+inline constexpr double kStiffRatio = 4;
+// The method for o.accuracy at the state s, with its reason (above); o unchanged when
+// o.accuracy is 0 (the integrator named).
 MethodChoice choose_method(const Model& m, const State& s, const ForwardOptions& o);
 
 // Throws Error (element: the option's name, "t0", "t1", "samples", "step", "max_steps", ...)

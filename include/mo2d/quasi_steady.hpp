@@ -33,7 +33,11 @@ struct ForwardData;
 // cell is shared by the row's psi and the forward run; standard layout, so the pointer converts
 // back: held_of).
 struct HeldLength {
-  double length = 0, rate = 0, t0 = 0, prev_length = 0, prev_t = NAN;
+  double length = 0;       // m, settled at the last projection (at t0)
+  double rate = 0;         // m/s, since the settling before
+  double t0 = 0;           // s, the time of the last settling
+  double prev_length = 0;  // m, the length settled before (for the rate)
+  double prev_t = NAN;     // s, its time; NaN: no settling yet
   // Whether a forward run holds the cell (QuasiSteadyRun): two runs at once on one Model (or on
   // copies, which share the cell) would move each other's lengths.
   std::atomic<bool> in_use{false};
@@ -41,6 +45,7 @@ struct HeldLength {
   double at(double t) const { return length + rate * (t - t0); }
 };
 static_assert(std::is_standard_layout_v<HeldLength>);
+// The cell of a quasi-steady spring (s.held_length must be set: reduce: quasi_steady).
 inline HeldLength& held_of(const ReducedSpring& s) {
   return *reinterpret_cast<HeldLength*>(s.held_length.get());
 }
