@@ -162,7 +162,7 @@ class RkDriver {
       if (o_.stop_when) {
         const double g = event(t + used, y_new);
         if ((g_prev < 0) != (g < 0) && g_prev != 0) {
-          locate_event(t, y, used, g_prev, g, rec);
+          locate_event(t, y, used, g_prev, g, rec, k);
           return;
         }
         g_prev = g;
@@ -390,8 +390,8 @@ class RkDriver {
   // method on the step length (each try redoes the step from (t, y)), record it and stop. Illinois
   // variant: an end kept twice has its value halved (plain regula falsi stalls at one end of a
   // convex or nearly flat condition, e.g. the span lengths of an inextensible chain).
-  void locate_event(double t, const VectorXd& y, double h, double g_lo, double g_hi,
-                    Recorder& rec) {
+  void locate_event(double t, const VectorXd& y, double h, double g_lo, double g_hi, Recorder& rec,
+                    int k) {
     double lo = 0, hi = h;
     VectorXd y_try(n_), y_best(n_);
     double t_best = t + h;
@@ -416,6 +416,12 @@ class RkDriver {
     }
     d_.stats.stopped_by_event = true;
     d_.stats.t_end = t_best;
+    // output times the step passed before the event (a free step of an embedded pair)
+    for (; k < o_.samples; ++k) {
+      const double t_out = o_.t0 + (o_.t1 - o_.t0) * k / (o_.samples - 1);
+      if (!(t_out < t_best)) break;
+      record_interpolated(rec, t, y, t_best, y_best, t_out);
+    }
     record(rec, t_best, y_best);
   }
 };

@@ -469,3 +469,30 @@ TEST(Forward, UnknownLabelsGetASuggestion) {
   EXPECT_EQ(message([&] { inv.effort("pivot.torqe"); }),
             "unknown input 'pivot.torqe' (did you mean 'pivot.torque'?)");
 }
+
+namespace mo2d {
+namespace {
+
+// An embedded pair's free step that passes output times and then meets the stop condition:
+// the output times before the event are recorded (interpolated) before the event's own sample,
+// so the trajectory keeps every grid time up to the event (they were dropped, and the chain
+// switching of inextensible chains then asked for a leg that ended before it started).
+TEST(Forward, OutputTimesBeforeAnEventAreRecorded) {
+  const Pendulum p = released_pendulum(0.5);
+  const int ix = p.model.coordinate("link.P.x");
+  ForwardOptions o{.integrator = Integrator::dopri5, .rtol = 1e-4, .atol = 1e-4};
+  o.t1 = 2 * p.quarter_period;
+  o.samples = 2000;  // steps of many grid intervals; the event between grid times 999 and 1000
+  o.stop_when = [ix](double, const VectorXd& q0, const VectorXd&) { return q0[ix]; };
+  const Trajectory r = forward_dynamics(p.model, p.start, o);
+  ASSERT_TRUE(r.stats.stopped_by_event);
+  const Eigen::Index n = r.time.size();
+  ASSERT_GE(n, 2);
+  const double h = (o.t1 - o.t0) / (o.samples - 1);
+  for (Eigen::Index i = 0; i + 1 < n; ++i) EXPECT_NEAR(r.time[i], o.t0 + i * h, 1e-12) << i;
+  EXPECT_NEAR(r.time[n - 1], p.quarter_period, 1e-4);
+  EXPECT_EQ(n - 1, static_cast<Eigen::Index>(std::floor(p.quarter_period / h)) + 1);
+}
+
+}  // namespace
+}  // namespace mo2d
