@@ -184,7 +184,7 @@ struct MethodChoice {
   double stability_steps = 0;    // |lambda|max T / kStabilityBound
   double accuracy_steps = 0;     // T / h_accuracy of the explicit method
   bool stiff = false;            // stability_steps > kStiffRatio accuracy_steps: cvode_bdf chosen
-  std::string reason{};  // "accuracy 1e-06, not stiff (|lambda|max T = 31 ...): dopri5 ..."
+  std::string reason{};          // "accuracy 1e-06, not stiff (|lambda|max T = 31 ...): dopri5 ..."
 };
 // The stability limit |lambda|max h of the explicit methods (about 2.5 to 3.3 on the real axis
 // for rk4, dopri5 and the higher orders: the smallest, rounded down).

@@ -144,9 +144,9 @@ MethodChoice choose_method(const Model& m, const State& s, const ForwardOptions&
     return c;
   }
   if (c.stiff && has_quasi_steady(m)) {  // start_quasi_steady refuses cvode_bdf
-    c.reason = asked + ", stiff (" + why +
-               ") but with quasi-steady springs, which cvode_bdf cannot follow: " +
-               method_text(c.options);
+    c.reason =
+        asked + ", stiff (" + why +
+        ") but with quasi-steady springs, which cvode_bdf cannot follow: " + method_text(c.options);
     return c;
   }
   if (c.stiff) {
