@@ -76,9 +76,11 @@ std::vector<std::vector<int>> pattern_of(const MatrixXd& A, bool skip_first = fa
 // N-four-bar for N = 1 .. 8. (The metamorphic generator's mechanisms have a singular M, massless
 // node directions: none of 40 takes this path, they take the KKT path.)
 std::vector<System> schur_mechanisms() {
-  using namespace mechanisms;  // NOLINT(google-build-using-namespace)
-  std::vector<System> out = {double_fourbar(), fourbar().system,      whitworth().system,
-                             rrr3().system,    slider_crank().system, pendulum().system};
+  // qualified: in the unity build other tests' own double_fourbar() and fourbar() are visible
+  namespace ex = mechanisms;
+  std::vector<System> out = {ex::double_fourbar(),      ex::fourbar().system,
+                             ex::whitworth().system,    ex::rrr3().system,
+                             ex::slider_crank().system, ex::pendulum().system};
   for (int n = 1; n <= 8; ++n) out.push_back(bench::n_fourbar(n));
   return out;
 }
