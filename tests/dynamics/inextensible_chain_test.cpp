@@ -25,7 +25,8 @@
 
 using namespace mo2d;
 
-namespace {
+// named, not anonymous: the debug-asan unity build puts chain_test.cpp's ra, rb, ... beside these
+namespace inextensible_chain_test {
 
 constexpr double ra = 0.04, rb = 0.1, Ia = 0.01, Ib = 0.4, tau0 = 2.0, ts = 0.5;
 constexpr double rho = ra / rb;
@@ -317,4 +318,4 @@ TEST(InextensibleChain, IntegratorsThatDoNotProjectAndBox2DRefuseIt) {
   }
 }
 
-}  // namespace
+}  // namespace inextensible_chain_test
