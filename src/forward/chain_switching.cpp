@@ -215,7 +215,7 @@ Trajectory Switcher::leg(Mode& md, const State& s, double t1, int samples) {
                          : "wall-time budget (max_seconds " + std::to_string(inner_.max_seconds)) +
                     ") ran out at t = " + std::to_string(s.t) + " s after " +
                     std::to_string(switches_) + " chain span switches",
-                "max_steps");
+                steps_left < 1 ? "max_steps" : "max_seconds");
   o.max_steps = static_cast<int>(steps_left);
   o.max_seconds = inner_.max_seconds - used_seconds;
   o.t0 = s.t;

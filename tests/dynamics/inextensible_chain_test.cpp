@@ -144,6 +144,18 @@ TEST(InextensibleChain, TractionReversesAndTheLowerSpanTakesOverAtTheClosedFormT
   EXPECT_LT(energy_balance_error(r), 1e-8);
 }
 
+// The step budget is the run's, shared by the legs between span switches: a budget one step
+// short of what the whole run takes stops it, though each leg alone would fit in it.
+TEST(InextensibleChain, TheStepBudgetIsTheRunsNotEachLegs) {
+  const Model m = build_model(
+      flywheels([](double t) { return tau0 * (1 - t / ts); }, ChainFidelity::inextensible));
+  ForwardOptions o = options(1, 101);
+  const Trajectory r = forward_dynamics(m, at_rest(m), o);
+  ASSERT_GT(r.stats.steps, 2);
+  o.max_steps = static_cast<int>(r.stats.steps) - 1;
+  EXPECT_THROW(forward_dynamics(m, at_rest(m), o), Error);
+}
+
 // The lower span delta longer: slack from ts, the engagement located and its impulse.
 TEST(InextensibleChain, SlackIntervalAndInelasticEngagementAgainstTheClosedForm) {
   const double D = 0.5, L0 = std::sqrt(D * D - (ra - rb) * (ra - rb)), delta = 1e-3;
