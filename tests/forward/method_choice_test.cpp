@@ -183,3 +183,34 @@ TEST(MethodChoice, ScenesWithoutAMethodAskForTheDefaultAccuracy) {
   EXPECT_TRUE(rb.stats.method.empty());
   EXPECT_EQ(rb.stats.integrator, "cvode_bdf");
 }
+
+// A stiff mechanism with a quasi-steady spring stays explicit (start_quasi_steady refuses
+// cvode_bdf): the mass-spring-mass with its link quasi-steady (k = 1e8) and mass 1 held to the
+// ground by a stiff undamped spring (k = 1e7 against the two masses, which the link makes one:
+// omega = 1.8e3 /s, 36 steps for stability over 0.05 s against 4 x 3.8 for the accuracy). The
+// link must stay the stiffer: with k = 1e4 its held length does not settle (the mount's force
+// moves its tension faster than its own law), an error. The choice says so, and the run goes
+// through with it.
+TEST(MethodChoice, StiffWithQuasiSteadySpringsStaysExplicit) {
+  std::string text = scene_text("mass_spring_mass");
+  text.replace(text.find("reduce: constraint}"), 18, "reduce: quasi_steady");
+  const std::string springs = "  springs:\n";
+  text.replace(text.find(springs), springs.size(),
+               springs +
+                   "    mount: {body_a: ground, point_a: [-1, 0], body_b: mass1, point_b: "
+                   "[0, 0], rest_length: 1, stiffness: 1e7, damping: 0}\n");
+  const std::vector<ParameterOverride> set = {{"k", "1e8"}};
+  const Scene scene = parse_scene(text, "mass_spring_mass.yaml", set);
+  const Model m = build_scene_model(scene);
+  const State s = initial_state(scene, m);
+  ForwardOptions o = forward_options(scene, m);
+  o.accuracy = 1e-6;
+  o.t1 = 0.05;
+  const MethodChoice c = choose_method(m, s, o);
+  EXPECT_TRUE(c.stiff) << c.reason;
+  EXPECT_NEAR(c.spectral_radius / std::sqrt(1e7 / 3.0), 1, 0.05) << c.reason;
+  EXPECT_EQ(c.options.integrator, options_for_accuracy(m, o).integrator) << c.reason;
+  EXPECT_NE(c.reason.find("quasi-steady springs"), std::string::npos) << c.reason;
+  const Trajectory r = forward_dynamics(m, s, o);
+  EXPECT_EQ(r.stats.integrator, std::string(to_string(c.options.integrator)));
+}
