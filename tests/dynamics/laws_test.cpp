@@ -44,7 +44,8 @@ ForwardOptions rk4(double t1, int samples = 101) {
 
 Trajectory swing(const System& s, const ForwardOptions& o, double w0 = 2.0) {
   const Model m = build_model(s);
-  return forward_dynamics(m, consistent_state(m, {.velocities = {{"bar.w", w0}}}), o);
+  return forward_dynamics(m, consistent_state(m, {.positions = {}, .velocities = {{"bar.w", w0}}}),
+                          o);
 }
 
 double max_abs_diff(const Eigen::MatrixXd& a, const Eigen::MatrixXd& b) {
@@ -120,7 +121,8 @@ TEST(Laws, TensionOnlyRopeGoesSlackIntoFreeFlight) {
                 .damping = 2.0,
                 .acts = SpringActs::tension_only});
   const Model m = build_model(s);
-  const State s0 = consistent_state(m, {.velocities = {{"bob.P.vx", 1.0}, {"bob.P.vy", 3.0}}});
+  const State s0 =
+      consistent_state(m, {.positions = {}, .velocities = {{"bob.P.vx", 1.0}, {"bob.P.vy", 3.0}}});
   ForwardOptions o;
   o.t1 = 1.0;
   o.samples = 201;
@@ -177,8 +179,8 @@ TEST(Laws, BumpStopBouncesElastically) {
     // and a step across the damper's jump then puts ~1e-4 J into the dissipated energy.
     o.rtol = 1e-11;
     o.atol = 1e-12;
-    const Trajectory r =
-        forward_dynamics(m, consistent_state(m, {.velocities = {{"rail.v", -1}}}), o);
+    const Trajectory r = forward_dynamics(
+        m, consistent_state(m, {.positions = {}, .velocities = {{"rail.v", -1}}}), o);
     const int iq = r.column("rail.q"), iv = r.rate_column("rail.v");
     EXPECT_EQ(r.a1(10, iv), 0.0);  // t = 0.1: x = 0.7, not in contact yet
     const int end = static_cast<int>(r.time.size()) - 1;
@@ -285,7 +287,8 @@ TEST(Laws, LabelsAreLocalToTheSubsystem) {
   root.add_instance("left", sub, {{-2, 0}, 0});
   root.add_instance("right", sub, {{2, 0}, 0});
   const Model m = build_model(root);
-  const State s0 = consistent_state(m, {.velocities = {{"left.bar.w", 2.0}, {"right.bar.w", 2.0}}});
+  const State s0 = consistent_state(
+      m, {.positions = {}, .velocities = {{"left.bar.w", 2.0}, {"right.bar.w", 2.0}}});
   const Trajectory r = forward_dynamics(m, s0, rk4(1.0, 11));
   System one = bar_pendulum();
   one.add_torque({.name = "drag", .body = "bar", .torque = Law({"bar.w"}, [](auto x, Jet) {

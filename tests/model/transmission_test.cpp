@@ -116,9 +116,10 @@ void compare(bool pinned) {
   for (int i = 0; i < rf.time.size(); ++i) {
     for (const char* c : {"case.X.x", "case.X.y"})
       EXPECT_NEAR(rf.q0(i, rf.column(c)), rl.q0(i, rl.column(c)), 1e-8) << c << " " << rf.time[i];
-    if (!pinned)
+    if (!pinned) {
       for (const char* c : {"case.O.x", "case.O.y"})
         EXPECT_NEAR(rf.q0(i, rf.column(c)), rl.q0(i, rl.column(c)), 1e-8) << c;
+    }
     EXPECT_NEAR(rf.q1(i, rf.rate_column("case.w")), rl.q1(i, rl.rate_column("case.w")), 1e-7);
     EXPECT_NEAR(rf.a1(i, rf.rate_column("case.w")), rl.a1(i, rl.rate_column("case.w")), 1e-6);
     const double phi_f = rf.q0(i, rf.column("rel")) - rf.q0(0, rf.column("rel"));
@@ -127,9 +128,10 @@ void compare(bool pinned) {
     EXPECT_NEAR(rf.q1(i, rf.rate_column("output.w")),
                 rl.q1(i, rl.rate_column("case.w")) + rl.q1(i, rl.rate_column("rel.rate")) / L.ratio,
                 1e-7);
-    if (pinned)
+    if (pinned) {
       for (const char* c : {"pivot.Fx", "pivot.Fy"})
         EXPECT_NEAR(rf.reactions(i, rf.reaction(c)), rl.reactions(i, rl.reaction(c)), 1e-6) << c;
+    }
     worst = std::max(worst, std::abs(phi_f - phi_l));
   }
   EXPECT_GT(std::abs(rf.q0(rf.time.size() - 1, rf.column("rel"))), 1.0);  // the train turns
