@@ -5,6 +5,7 @@
 // command-line usage error (a bad option or value, a --set that names no parameter).
 #include <CLI/CLI.hpp>
 #include <cstdio>
+#include <cstring>
 #include <exception>
 #include <vector>
 
@@ -37,24 +38,29 @@ int main(int argc, char** argv) {  // NOLINT(bugprone-exception-escape)
                    "available: %s\n",
                    why.c_str());
   }
+  // A core command (or --version) named first: only that one is built. CLI11 builds every option
+  // of every subcommand it is given, about 0.5 M instructions for the four (docs/performance.md,
+  // "CLI start-up"); the help that lists them all is asked for otherwise.
+  const bool core_first = !needs_drawing_commands(argc, argv);
   std::vector<Command> commands;
-  auto add = [&](Command (*core)(CLI::App&), const char* drawing) {
+  auto add = [&](Command (*core)(CLI::App&), const char* name) {
     Command c;
-    if (core)
-      commands.push_back(core(app));
-    else if (draw && draw(MO2D_VERSION, drawing, &app, &c))
+    if (core) {
+      if (!core_first || std::strcmp(argv[1], name) == 0) commands.push_back(core(app));
+    } else if (draw && draw(MO2D_VERSION, name, &app, &c)) {
       commands.push_back(c);
+    }
   };
   add(nullptr, "demo");
-  add(add_info_command, nullptr);
-  add(add_inverse_command, nullptr);
-  add(add_forward_command, nullptr);
+  add(add_info_command, "info");
+  add(add_inverse_command, "inverse");
+  add(add_forward_command, "forward");
   add(nullptr, "render");
   add(nullptr, "crosscheck");
   add(nullptr, "plot");
   add(nullptr, "modes");
   add(nullptr, "linearize");
-  add(add_sweep_command, nullptr);
+  add(add_sweep_command, "sweep");
   // SIGINT/SIGTERM/SIGHUP remove the temporaries of unfinished output files (mo2d/output.hpp);
   // after the module, which installs its own handler for the files it writes
   mo2d::remove_temporaries_on_signal();

@@ -31,10 +31,12 @@ std::string point_str(const Vec2& p) {
 // of one joint node must coincide and a slider must lie on its axis: a gap is a contradiction in
 // the definition, not an approximate position that assembly could fix. `size` is the
 // mechanism's size (diagonal of the box around every node), the tolerance is relative to it.
+// `detail()` words the gap, called only to throw (formatting positions costs a stream each).
+template <class Detail>
 void check_joint_gap(double gap, double size, double tolerance, const std::string& what,
-                     const std::string& detail, const char* rule, const std::string& element) {
+                     const Detail& detail, const char* rule, const std::string& element) {
   if (!(gap > tolerance * size)) return;
-  throw Error(what + ": " + detail + " " + num(gap) + " m apart (" + num(gap / size) +
+  throw Error(what + ": " + detail() + " " + num(gap) + " m apart (" + num(gap / size) +
                   " of the mechanism's size " + num(size) + " m; tolerance " + num(tolerance) +
                   "): each body's node positions define its shape, so " + rule +
                   " in the initial configuration",
@@ -168,11 +170,14 @@ AxisJoint check_axis_joint(const AxisJointWords& words, const std::string& prefi
   const Vec2 pi = el.position[p.ei], axis = (el.position[p.ej] - pi).normalized();
   const Vec2 r = el.position[p.es] - pi;
   const double gap = std::abs(axis.x() * r.y() - axis.y() * r.x());
-  check_joint_gap(gap, el.size, joint_tolerance, what,
-                  std::string("its ") + words.slider + " '" + el.label[p.es] + "' at " +
-                      point_str(el.position[p.es]) + " and the line of its axis '" +
-                      el.label[p.ei] + "' -> '" + el.label[p.ej] + "' are",
-                  "a slider must lie on the line of its axis", prefix + name);
+  check_joint_gap(
+      gap, el.size, joint_tolerance, what,
+      [&] {
+        return std::string("its ") + words.slider + " '" + el.label[p.es] + "' at " +
+               point_str(el.position[p.es]) + " and the line of its axis '" + el.label[p.ei] +
+               "' -> '" + el.label[p.ej] + "' are";
+      },
+      "a slider must lie on the line of its axis", prefix + name);
   return p;
 }
 
@@ -299,8 +304,10 @@ std::array<int, 2> check_revolute(const Owned<RevoluteDef>& j, const Elements& e
   if (ba < 0 && bb < 0) throw Error(what + " joins two ground nodes", j.prefix + j.def.name);
   if (ba == bb) throw Error(what + " joins two nodes of the same body", j.prefix + j.def.name);
   check_joint_gap((el.position[eb] - el.position[ea]).norm(), el.size, joint_tolerance, what,
-                  "its nodes '" + el.label[ea] + "' at " + point_str(el.position[ea]) + " and '" +
-                      el.label[eb] + "' at " + point_str(el.position[eb]) + " are",
+                  [&] {
+                    return "its nodes '" + el.label[ea] + "' at " + point_str(el.position[ea]) +
+                           " and '" + el.label[eb] + "' at " + point_str(el.position[eb]) + " are";
+                  },
                   "the two copies of a joint node must coincide", j.prefix + j.def.name);
   return {ea, eb};
 }
