@@ -127,9 +127,7 @@ struct ForwardOptions {
   // Input efforts, one law per Model::inputs entry (missing or empty = zero): a function of time
   // (open loop), or of time and the state (mo2d/law.hpp: a feedback law, e.g. pd_control).
   EffortLaws efforts{};
-  // Stop early when this function of the state changes sign (root finding between steps). The
-  // last sample is the located crossing on its far side, where the sign has changed (also at a
-  // jump of the function), on the constraint manifolds.
+  // Stop early when this function of the state changes sign (root finding between steps).
   std::function<double(double t, const VectorXd& q0, const VectorXd& q1)> stop_when{};
   // Warn where (sigma_min / sigma_max)^2 of the dimensionless constraint Jacobian (columns scaled
   // by column_scaling, unit rows; mo2d/kinematics.hpp) is below this
