@@ -162,7 +162,7 @@ class RkDriver {
       if (o_.stop_when) {
         const double g = event(t + used, y_new);
         if ((g_prev < 0) != (g < 0) && g_prev != 0) {
-          locate_event(t, y, used, g_prev, g, rec, k);
+          locate_event(t, y, used, g_prev, g, y_new, rec, k);
           return;
         }
         g_prev = g;
@@ -386,23 +386,30 @@ class RkDriver {
     const VectorXd q0 = q0_, q1 = q1_;
     rec.record(t, q0, q1, y.data() + m_.n0 + m_.n1);
   }
-  // The stop condition changed sign over the step (t, t + h]: locate the crossing by the secant
-  // method on the step length (each try redoes the step from (t, y)), record it and stop. Illinois
-  // variant: an end kept twice has its value halved (plain regula falsi stalls at one end of a
-  // convex or nearly flat condition, e.g. the span lengths of an inextensible chain).
-  void locate_event(double t, const VectorXd& y, double h, double g_lo, double g_hi, Recorder& rec,
-                    int k) {
+  // The stop condition changed sign over the step (t, t + h] (y_hi: the step's end): locate the
+  // crossing by the secant method on the step length (each try redoes the step from (t, y)),
+  // record it and stop. Illinois variant: an end kept twice has its value halved (plain regula
+  // falsi stalls at one end of a convex or nearly flat condition, e.g. the span lengths of an
+  // inextensible chain). An iteration that did not halve the bracket is followed by a bisection:
+  // at a jump of the condition (a torque step) from a small value to a large one of the other
+  // sign the secant point stays next to the small end, and Illinois alone took more than 60 tries
+  // to get the bracket from 1e-2 s to 1e-7 s. The state recorded is the bracket's far end, where
+  // the condition has changed sign (as CVODE's root finding returns): at a jump the near end is
+  // before it, where the caller sees no crossing.
+  void locate_event(double t, const VectorXd& y, double h, double g_lo, double g_hi,
+                    const VectorXd& y_hi, Recorder& rec, int k) {
     double lo = 0, hi = h;
-    VectorXd y_try(n_), y_best(n_);
+    VectorXd y_try(n_), y_best = y_hi;
     double t_best = t + h;
     int kept = 0;  // -1: lo moved last, +1: hi moved last
-    for (int it = 0; it < 60; ++it) {
-      const double mid = lo + (hi - lo) * g_lo / (g_lo - g_hi);
+    bool bisect = false;
+    for (int it = 0; it < 120; ++it) {
+      const double width = hi - lo;
+      const double mid = bisect ? lo + 0.5 * width : lo + width * g_lo / (g_lo - g_hi);
       double err = 0;
       step(t, y, mid, y_try, err, false);
       const double g = event(t + mid, y_try);
-      y_best = y_try;
-      t_best = t + mid;
+      if ((g < 0) != (g_lo < 0) || g == 0) y_best = y_try, t_best = t + mid;
       if ((g < 0) == (g_lo < 0)) {
         lo = mid, g_lo = g;
         if (kept == -1) g_hi /= 2;
@@ -413,6 +420,7 @@ class RkDriver {
         kept = 1;
       }
       if (std::abs(hi - lo) < 1e-13 * std::max(1.0, std::abs(t)) || g == 0) break;
+      bisect = hi - lo > 0.5 * width;
     }
     d_.stats.stopped_by_event = true;
     d_.stats.t_end = t_best;

@@ -192,6 +192,44 @@ TEST(InextensibleChain, SlackIntervalAndInelasticEngagementAgainstTheClosedForm)
   EXPECT_NEAR(r.dissipated[r.time.size() - 1], 0.5 * P * rate, 1e-6 * P * rate);
 }
 
+// The torque reversing by a step at ts (+tau0 to -tau0), the lower span delta longer: the upper
+// span's tension jumps below 0 at ts, the chain is slack from ts and the lower span engages at
+// ts + sqrt(2 I_a delta / (r_a tau0)) (a decelerates at tau0 / I_a, b keeps its rate). A located
+// event at a jump of the stop condition must be the state past it, whatever the tolerance: at
+// loose tolerances the root finding's last try fell before the jump, where no condition had
+// crossed, and the switching took the smallest one, the lower span's slack, for "both spans
+// taut" (the half-bike's torque steps at 5 and 10 s with dopri5 at rtol 1e-4 and 1e-6). And with
+// CVODE the engagement's located root, an interpolant inside a long step, was off the constraint
+// manifolds by 5e-6 of the size (a drift error at rtol 1e-4 and 1e-5).
+TEST(InextensibleChain, TorqueStepIsLocatedPastTheStepAtLooseTolerances) {
+  const double D = 0.5, L0 = std::sqrt(D * D - (ra - rb) * (ra - rb)), delta = 1e-3;
+  const Model m = build_model(flywheels([](double t) { return t < ts ? tau0 : -tau0; },
+                                        ChainFidelity::inextensible, 0, 0, L0 + delta));
+  const double te = ts + std::sqrt(2 * Ia * delta / (ra * tau0));
+  for (Integrator integ : {Integrator::dopri5, Integrator::cvode_bdf})
+    for (double rtol : {1e-4, 1e-5, 1e-6, 1e-7, 1e-8}) {
+      ForwardOptions o = options(1, 101);
+      o.integrator = integ;
+      o.rtol = rtol;
+      o.atol = 1e-2 * rtol;
+      SCOPED_TRACE(std::string(to_string(integ)) + " rtol " + std::to_string(rtol));
+      try {
+        const Trajectory r = forward_dynamics(m, at_rest(m), o);
+        EXPECT_NEAR(time_of(r, "slack from"), ts, 1e-9);
+        // the slack interval to 1% at rtol 1e-4 (seen: dopri5 4e-9 s, the span's length
+        // tolerance; CVODE 9e-6 s at rtol 1e-4 to 2e-7 s at 1e-8)
+        EXPECT_NEAR(time_of(r, "reaches its rest length"), te, 1e-2 * (te - ts));
+        // CVODE's located root is its interpolant, projected (else 5e-6 of the size: an error)
+        EXPECT_LT(r.stats.max_drift, 1e-9);
+        std::printf("%s rtol %.0e: slack from %.12f s, engagement error %.2e s, max drift %.1e\n",
+                    to_string(integ), rtol, time_of(r, "slack from"),
+                    time_of(r, "reaches its rest length") - te, r.stats.max_drift);
+      } catch (const Error& e) {
+        ADD_FAILURE() << e.what();
+      }
+    }
+}
+
 // The stiff chain (bilateral, damped, a viscous bearing) tends to the inextensible one as 1/k.
 TEST(InextensibleChain, StiffChainTendsToItAsOneOverK) {
   auto ramp = [](double t) {
