@@ -80,7 +80,7 @@ TEST(PatternLU, AgreesWithDenseAlongDriftingValues) {
         MatrixXd A = A0;
         for (int j = 0; j < n; ++j)
           for (int i = 0; i < n; ++i)
-            if (A(i, j) != 0) A(i, j) *= 1 + 0.3 * std::sin(0.1 * step * (1 + i + 2 * j));
+            if (A(i, j) != 0) A(i, j) *= 1 + 0.2 * std::sin(0.05 * step + i + 2 * j);
         expect_agree(p, A, g, "drift");
         sparse += p.last_sparse();
         ++calls;
