@@ -207,7 +207,8 @@ void PatternLU::analyse(const Eigen::Ref<const Eigen::MatrixXd>& A) {
     s[k + k * n] = 1;
     for (int j = k + 1; j < n; ++j)
       if (s[k + j * n])
-        for (int i = k + 1; i < n; ++i) s[i + j * n] |= s[i + k * n];
+        for (int i = k + 1; i < n; ++i)
+          if (s[i + k * n]) s[i + j * n] = 1;
   }
   fill_.clear(), l_start_.clear(), l_row_.clear(), l_idx_.clear(), u_start_.clear(), u_col_.clear();
   uc_start_.clear(), uc_row_.clear(), uc_idx_.clear();
