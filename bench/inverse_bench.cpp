@@ -11,6 +11,7 @@
 // with an SI prefix). BM_Run reports the time of a whole run and "s/sample" = run time / N.
 #include <benchmark/benchmark.h>
 
+#include "linalg/pattern_lu.hpp"
 #include "mo2d/inverse.hpp"
 #include "mo2d/mechanisms.hpp"
 #include "mo2d/model.hpp"
@@ -46,6 +47,13 @@ void BM_Sample(benchmark::State& state, Factory make) {
   state.SetItemsProcessed(state.iterations());
   state.counters["s/sample"] = per_item(static_cast<double>(state.iterations()));
   state.counters["newton_it"] = data.newton_iterations;
+  // factorizations of K and of the Newton Jacobian on the fixed pattern, and analyses of it
+  const auto& lk = *data.lu_K;
+  const auto& lp = *data.lu_pos;
+  state.counters["sparse_K"] = static_cast<double>(lk.refactorizations);
+  state.counters["analyses_K"] = static_cast<double>(lk.analyses);
+  state.counters["sparse_J"] = static_cast<double>(lp.refactorizations);
+  state.counters["analyses_J"] = static_cast<double>(lp.analyses);
 }
 
 void BM_Run(benchmark::State& state, Factory make) {

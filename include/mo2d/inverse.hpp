@@ -21,7 +21,7 @@
 namespace mo2d {
 
 namespace detail {
-class SmallLU;     // dense LU of the small systems of one sample (src/linalg/small_lu.hpp)
+class PatternLU;   // fixed-pattern LU of the small systems of one sample (linalg/pattern_lu.hpp)
 struct SlotEntry;  // an entry of A owned by a body slot, for the reactions (src/dynamics/)
 }  // namespace detail
 
@@ -124,7 +124,7 @@ struct InverseData {
   VectorXd s, s_dot, s_ddot, psi, trial, q0_trial, b, c, rhs, w, f, local, local_a, z, Ctw;
   VectorXd row_residual;
   MatrixXd J, K, B, CtB;
-  MatrixXd Ks;                  // dimensionless K = diag(k_row) K diag(col_scale), factored
+  MatrixXd Ks;  // dimensionless K = diag(k_row) K diag(col_scale) (formed for the messages)
   VectorXd col_scale, k_row;    // column_scaling of the model; row scaling of K
   VectorXd pos_scale, q0_pred;  // its first n0 entries (dimensionless q0 / pos_scale); prediction
   // sign of det K at the last two samples (a change: a singular configuration passed)
@@ -134,7 +134,7 @@ struct InverseData {
   double near_min = 1, near_t = 0;
   std::string near_what;  // prescribed values and variables at the smallest pivot ratio
   MatrixXd S;  // orthogonal complement C (n1 x dof) used for the efforts of the last sample
-  std::unique_ptr<detail::SmallLU> lu_pos, lu_K;  // positions (free coordinates), K = [A; E]
+  std::unique_ptr<detail::PatternLU> lu_pos, lu_K;  // positions (free coordinates), K = [A; E]
   // LU of the effort equations C^T B u = C^T (M a1 - f) (C^T f = 0 of Orsino 2016 eq. 4.1,
   // Theorem 4.3)
   Eigen::PartialPivLU<MatrixXd> lu_u;

@@ -14,7 +14,7 @@
 #include "inverse/inverse_stages.hpp"
 #include "kinematics/residuals.hpp"
 #include "kinematics/solve_positions.hpp"
-#include "linalg/small_lu.hpp"
+#include "linalg/pattern_lu.hpp"
 #include "mo2d/dynamics.hpp"
 #include "mo2d/error.hpp"
 #include "mo2d/kinematics.hpp"
@@ -170,7 +170,7 @@ detail::NewtonOptions sample_newton(const InverseOptions& o, double scale) {
 // Writes d.residual_position and d.newton_iterations; leaves d.J evaluated at the last iterate.
 NewtonStatus newton(const Model& m, InverseData& d, double t) {
   detail::NewtonBuffers w{
-      .psi = d.psi, .J = d.J, .dx = d.trial, .q_trial = &d.q0_trial, .lu = d.lu_pos.get()};
+      .psi = d.psi, .J = d.J, .dx = d.trial, .q_trial = &d.q0_trial, .pattern_lu = d.lu_pos.get()};
   const detail::NewtonResult r =
       detail::solve_positions(m, sample_newton(d.options, m.scale), w, t, d.colmap, d.q0);
   if (r.status == NewtonStatus::non_finite)
@@ -206,6 +206,12 @@ void check_branch(const Model& m, InverseData& d, double t) {
                        "samples; results near it are not reliable: use more samples)");
 }
 
+// The dimensionless Ks = R K D that lu_K factors (formed only for the messages).
+const MatrixXd& scaled_K(InverseData& d) {
+  d.Ks.noalias() = d.k_row.asDiagonal() * d.K * d.col_scale.asDiagonal();
+  return d.Ks;
+}
+
 // Singular configurations between and at samples: the orientation (sign of det) of the
 // dimensionless K changes where the path crosses a singular configuration; a run of samples with
 // the pivot ratio below near_singular_pivot_ratio is reported at its smallest value.
@@ -216,14 +222,14 @@ void check_singular_passage(const Model& m, InverseData& d, double t) {
                          " s and t = " + fmt(t) + " s (" + prescribed_values(d) +
                          "): the constraint Jacobian with the prescribed coordinates changes "
                          "orientation (undetermined there: " +
-                         null_variables(d.Ks, m.rate_labels) +
+                         null_variables(scaled_K(d), m.rate_labels) +
                          "); efforts and reactions near it are not reliable");
   if (d.pivot_ratio < d.options.near_singular_pivot_ratio) {
     if (!d.near_singular || d.pivot_ratio < d.near_min) {
       d.near_min = d.pivot_ratio;
       d.near_t = t;
       d.near_what = prescribed_values(d) + "; dimensionless pivot ratio " + fmt(d.pivot_ratio) +
-                    "; nearly undetermined: " + null_variables(d.Ks, m.rate_labels);
+                    "; nearly undetermined: " + null_variables(scaled_K(d), m.rate_labels);
     }
     d.near_singular = true;
   } else {
@@ -320,10 +326,9 @@ void factor_velocity_system(const Model& m, InverseData& d, double t) {
                 t);
   for (int i = 0; i < m.m1; ++i) d.k_row[i] = s2[i] > 0 ? 1 / std::sqrt(s2[i]) : 1.0;
   for (int k = 0; k < dof; ++k) d.k_row[m.m1 + k] = 1 / d.col_scale[d.p_index[k]];
-  d.Ks.noalias() = d.k_row.asDiagonal() * d.K * d.col_scale.asDiagonal();
-  d.pivot_ratio = d.lu_K->compute(d.Ks);
+  d.pivot_ratio = d.lu_K->compute_scaled(d.K, d.k_row, d.col_scale);  // Ks
   if (d.pivot_ratio < d.options.singular_pivot_ratio) {
-    const std::string vars = null_variables(d.Ks, m.rate_labels);
+    const std::string vars = null_variables(scaled_K(d), m.rate_labels);
     if (!d.has_previous)
       throw Error("the prescribed coordinates (" + prescribed_values(d) +
                       ") are not independent inputs: the velocity constraints with them "
@@ -376,7 +381,8 @@ void efforts_and_multipliers(const Model& m, InverseData& d, double t) {
     solve_K(d, col);
   }
   if (d.options.complement == ComplementMethod::recursive) d.S = recursive_complement(m, A);
-  d.CtB.noalias() = d.S.transpose() * d.B;
+  // dof x dof dot products of length n1 (coefficient-wise: Eigen's GEMM path costs more here)
+  d.CtB.noalias() = d.S.transpose().lazyProduct(d.B);
   d.lu_u.compute(d.CtB);
   if (pivot_ratio(d.lu_u) < d.options.singular_pivot_ratio)
     throw Error("the actuators cannot produce the prescribed motion at t = " + fmt(t) + " s (" +

@@ -1,12 +1,13 @@
 // The inverse-dynamics workspace: the check of the options (time grid, budget, memory) and the
 // construction of InverseData (the prescribed coordinates, the free columns, the buffers of one
 // sample).
+#include <algorithm>
 #include <cmath>
 #include <string>
 
 #include "constraints/constraints.hpp"
 #include "dynamics/reactions.hpp"
-#include "linalg/small_lu.hpp"
+#include "linalg/pattern_lu.hpp"
 #include "mo2d/budget.hpp"
 #include "mo2d/dynamics.hpp"
 #include "mo2d/error.hpp"
@@ -20,10 +21,11 @@ namespace {
 
 using detail::fmt;
 
-// Dense matrices of the inverse workspace (J, K and their factorizations, S, B) and the results.
+// Dense matrices of the inverse workspace (J, K and their factorizations: each PatternLU holds
+// three matrices of its size, S, B) and the results.
 double inverse_memory_bytes(const Model& m, const InverseOptions& o) {
   const double n0 = m.n0, n1 = m.n1, m0 = m.m0;
-  const double dense = 2 * m0 * n0 + 3 * n1 * n1 + 2 * n1 * m.dof + n1 * m.n_inputs();
+  const double dense = 4 * m0 * n0 + 5 * n1 * n1 + 2 * n1 * m.dof + n1 * m.n_inputs();
   const double columns = n0 + 2 * n1 + m.n_inputs() + m.n_reactions() + 4;
   return 8 * (dense + static_cast<double>(o.samples) * columns);
 }
@@ -113,8 +115,11 @@ InverseData::InverseData(const Model& m, std::span<const Prescribed> prescribed,
   CtB = MatrixXd::Zero(dof, nu);
   Ctw = VectorXd::Zero(dof);
   row_residual = VectorXd::Zero(m.m1);
-  lu_pos = std::make_unique<detail::SmallLU>(nfree);
-  lu_K = std::make_unique<detail::SmallLU>(m.n1);
+  // the fixed-pattern LUs factor densely (as before) within a factor 10 of the thresholds the
+  // pivot ratio is compared with, so that singular configurations are told by the dense LU
+  lu_pos = std::make_unique<detail::PatternLU>(nfree, 10 * o.singular_pivot_ratio);
+  lu_K = std::make_unique<detail::PatternLU>(
+      m.n1, 10 * std::max(o.singular_pivot_ratio, o.near_singular_pivot_ratio));
   lu_u = Eigen::PartialPivLU<MatrixXd>(dof);
   edge_force.assign(detail::merge_edge_layout(m, edge_offset), 0.0);
   // size the entry list with a dry run (the pattern is fixed)

@@ -7,6 +7,7 @@
 
 #include "kinematics/conditioning.hpp"
 #include "kinematics/residuals.hpp"
+#include "linalg/pattern_lu.hpp"
 
 namespace mo2d::detail {
 
@@ -25,6 +26,12 @@ struct Solve {
   bool step() {
     switch (o.step) {
       case NewtonStep::lu:
+        if (w.pattern_lu) {
+          if (w.pattern_lu->compute(w.J) < o.singular_pivot_ratio) return false;
+          w.dx = w.psi;
+          w.pattern_lu->solve_in_place(w.dx);
+          return true;
+        }
         if (w.lu->compute(w.J) < o.singular_pivot_ratio) return false;
         w.dx = w.psi;
         w.lu->solve_in_place(w.dx);

@@ -34,6 +34,8 @@
 
 namespace mo2d::detail {
 
+class PatternLU;  // linalg/pattern_lu.hpp
+
 using Eigen::MatrixXd;
 using Eigen::VectorXd;
 
@@ -100,11 +102,12 @@ struct NewtonResult {
 // The caller's storage, sized once for the model (m0 rows, `free` = the coordinates not held
 // fixed): the solver allocates nothing, except for NewtonStep::minimum_norm.
 struct NewtonBuffers {
-  VectorXd& psi;                // m0: the residual of the last iterate evaluated
-  MatrixXd& J;                  // m0 x free: its Jacobian over the free coordinates
-  VectorXd& dx;                 // free: the last step
-  VectorXd* q_trial = nullptr;  // n0: a line search's trial point
-  SmallLU* lu = nullptr;        // NewtonStep::lu (size free)
+  VectorXd& psi;                    // m0: the residual of the last iterate evaluated
+  MatrixXd& J;                      // m0 x free: its Jacobian over the free coordinates
+  VectorXd& dx;                     // free: the last step
+  VectorXd* q_trial = nullptr;      // n0: a line search's trial point
+  SmallLU* lu = nullptr;            // NewtonStep::lu (size free)
+  PatternLU* pattern_lu = nullptr;  // NewtonStep::lu: used instead of lu if set
   // NewtonStep::damped (all coordinates free): the metric W (n0 x n0), the column scaling d (n0),
   // and workspace for N (m0), W + alpha J^T N^2 J and its factorization
   const MatrixXd* metric = nullptr;

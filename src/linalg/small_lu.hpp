@@ -97,6 +97,8 @@ class SmallLU {
       if (perm_[k] != k) std::swap(x[k], x[perm_[k]]);
   }
   const Eigen::MatrixXd& matrix() const { return lu_; }
+  // the row transpositions of the last compute: step k swapped rows k and transpositions()[k]
+  const std::vector<int>& transpositions() const { return perm_; }
 
  private:
   Eigen::MatrixXd lu_;
