@@ -103,8 +103,8 @@ struct TransmissionDef {
   std::string name{};     // unique in its System; prefix of the labels it adds
   std::string housing{};  // a body of the System with at least two nodes, without a shape
   std::string input{};    // the shaft driven by the input "NAME.torque" (ratio 1)
-  std::vector<TransmissionShaftDef> shafts{};  // at least one, the input among them
-  TransmissionFidelity fidelity = TransmissionFidelity::full;
+  std::vector<TransmissionShaftDef> shafts{};                  // at least one, the input among them
+  TransmissionFidelity fidelity = TransmissionFidelity::full;  // the model to build
 };
 
 // Adds transmission `def` to `system` at its fidelity: the bodies, joints, gear pairs, housing
