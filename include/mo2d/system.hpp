@@ -151,6 +151,9 @@ struct CoordinateDef {
   // (quasi-velocity label, weight c_k) pairs of its rate
   std::vector<std::pair<std::string, double>> rate{};
   std::optional<double> initial{};  // default: the value implied by the initial configuration
+  // non-empty: an input of this label acting on the coordinate, the generalized force u times
+  // each weight on its rate's terms (power u * d/dt name); e.g. a motor on a geared shaft
+  std::string input{};
 };
 
 // User constraint at position level: psi(x, t) = 0, x = the coordinates named in args.
@@ -430,6 +433,9 @@ class System {
   const std::string& name() const { return name_; }
   const std::vector<NodeDef>& ground() const { return ground_; }
   const std::vector<BodyDef>& bodies() const { return bodies_; }
+  // The body `name` of this System (not of an instance) to change its definition, as
+  // add_transmission does; nullptr if there is none.
+  BodyDef* find_body(const std::string& name);
   const std::vector<RevoluteDef>& revolutes() const { return revolutes_; }
   const std::vector<PrismaticDef>& prismatics() const { return prismatics_; }
   const std::vector<PinInSlotDef>& slots() const { return slots_; }

@@ -24,6 +24,19 @@
 // becomes the torque rho_k u_k / rho_e on A relative to the housing; a torque tau_k on shaft k
 // from outside (the ground) adds tau_k on the housing as well: tau_k on the housing plus
 // rho_k tau_k / rho_e on A relative to it.
+//
+// The element (add_transmission, scene key `transmissions:`): the train written once with a
+// fidelity switch. Both fidelities have the coordinate "NAME.phi" (the input shaft's angle
+// relative to the housing since the start; its rate "NAME.phi.rate") and the input "NAME.torque"
+// (a motor between the housing and the input shaft, power u phi'), so their results compare
+// column by column. With the input shaft as reference (rho = 1):
+//  - full: each shaft a body of the System (named as the shaft) on a revolute joint
+//    "NAME_SHAFT" at the housing's node "NAME_SHAFT", each other shaft geared to the input by a
+//    pair "NAME_SHAFT_mesh" (ratio rho_k, carrier the housing); phi' = omega_in - omega_c;
+//  - lumped: the housing's inertia plus the spread, bodies "NAME_a" and "NAME_b" on revolute
+//    joints "NAME_a_bearing" and "NAME_b_bearing" at the housing's node "NAME_axis" (h~), the pair
+//    "NAME_pair" (B driven by A, ratio -1, carrier the housing); phi = NAME_pair.phi / rho_e, so
+//    the input becomes u / rho_e on A relative to the housing (the cotangent lift).
 #include <span>
 #include <string>
 #include <vector>
@@ -68,5 +81,37 @@ struct LumpedTransmission {
 LumpedTransmission lump_transmission(const TransmissionHousing& housing,
                                      std::span<const TransmissionShaft> shafts,
                                      const std::string& name = "transmission");
+
+// How a transmission is modelled: every shaft a body with its gear pairs, or the exact lumped
+// equivalent (two shafts, one pair).
+enum class TransmissionFidelity { full, lumped };
+
+// One shaft of a transmission element: its data (ratio relative to the input shaft, 1 for the
+// input itself) and an optional torque from outside (the ground) on it.
+struct TransmissionShaftDef {
+  std::string name{};         // the shaft body's name in the full model, unique in its System
+  TransmissionShaft shaft{};  // mass, inertia, axis (System frame, initial configuration), ratio
+  // N m, counter-clockwise on the shaft from outside (a load, a brake to the ground); empty = 0.
+  // The lumped model has no body of this shaft: a law that reads the shaft's own state fails to
+  // build there (read the housing's or "NAME.phi" instead).
+  Law torque{};
+};
+
+// A gear train in a housing body, written once and modelled at `fidelity` (see the file's
+// description).
+struct TransmissionDef {
+  std::string name{};     // unique in its System; prefix of the labels it adds
+  std::string housing{};  // a body of the System with at least two nodes, without a shape
+  std::string input{};    // the shaft driven by the input "NAME.torque" (ratio 1)
+  std::vector<TransmissionShaftDef> shafts{};                  // at least one, the input among them
+  TransmissionFidelity fidelity = TransmissionFidelity::full;  // the model to build
+};
+
+// Adds transmission `def` to `system` at its fidelity: the bodies, joints, gear pairs, housing
+// nodes, coordinate "NAME.phi" with input "NAME.torque" and torques of the file's description
+// (lumped: the housing body's inertia gains the shafts' spread). Throws Error (element
+// def.name) for an unknown housing or one without two nodes or given by its shape, an input
+// that is not one of the shafts or whose ratio is not 1, and whatever lump_transmission refuses.
+void add_transmission(System& system, const TransmissionDef& def);
 
 }  // namespace mo2d

@@ -246,6 +246,8 @@ void add_coordinate_rows(const Flat& flat, Numbering& num, Model& m) {
       throw Error(what + ": initial value is not finite", name);
     num.q0[c.coord] = cd.def.initial.value_or(implied);
     c.offset = num.q0[c.coord] - implied;
+    if (!cd.def.input.empty())  // power u * rate: u times each weight on its term
+      m.inputs.push_back({cd.prefix + cd.def.input, name, c.rate_terms});
     const int nrow0 = c.holonomic ? 1 : 0;
     add_constraint(m, Constraint{.name = name, .owner = cd.owner, .def = std::move(c)}, nrow0, 1,
                    {""}, {".rate"});

@@ -29,6 +29,11 @@ System& System::add_body(BodyDef body) {
   bodies_.push_back(std::move(body));
   return *this;
 }
+BodyDef* System::find_body(const std::string& name) {
+  for (BodyDef& b : bodies_)
+    if (b.name == name) return &b;
+  return nullptr;
+}
 System& System::add_revolute(RevoluteDef joint) {
   revolutes_.push_back(std::move(joint));
   return *this;

@@ -407,10 +407,11 @@ Scene parse_scene(std::string_view yaml, const std::string& file_name,
       throw SceneError(Location{file_name, 1, 1},
                        std::string("a scene is a map of keys (name, bodies, joints, ...), got ") +
                            type_name(doc));
-    r.check_keys(doc, {"name",    "parameters",  "tables",    "ground", "bodies",
-                       "joints",  "coordinates", "gears",     "racks",  "constraints",
-                       "loads",   "subsystems",  "instances", "motion", "initial",
-                       "efforts", "controllers", "run",       "points", "outputs"},
+    r.check_keys(doc, {"name",         "parameters",  "tables",    "ground", "bodies",
+                       "joints",       "coordinates", "gears",     "racks",  "constraints",
+                       "loads",        "subsystems",  "instances", "motion", "initial",
+                       "efforts",      "controllers", "run",       "points", "outputs",
+                       "transmissions"},
                  "scene");
     scene.name = doc["name"].IsDefined() ? r.string(doc["name"], "name") : "scene";
     read_parameters(r, doc["parameters"], doc["tables"], overrides, scene);

@@ -486,6 +486,7 @@ SystemInfo read_system(const Reader& r, const YAML::Node& block, System& out, bo
   read_joints(c, block["joints"]);
   read_coordinates(c, block["coordinates"]);
   read_gears(r, block["gears"], block["racks"], out, c.info);
+  read_transmissions(r, block["transmissions"], out, c.info);
   read_constraints(c, block["constraints"]);
   read_loads(c, block["loads"], root);
   read_points(r, block["points"], out, c.info);

@@ -40,8 +40,8 @@ struct Subsystems {
 };
 
 inline constexpr std::initializer_list<const char*> kSystemKeys = {
-    "ground", "bodies",      "joints", "coordinates", "gears",
-    "racks",  "constraints", "loads",  "instances",   "points"};
+    "ground",      "bodies", "joints",    "coordinates", "gears",        "racks",
+    "constraints", "loads",  "instances", "points",      "transmissions"};
 
 // A law from an expression of t, the parameters and quantities of the state (its other names,
 // resolved by build_model); a function of time only when it names none. `uses` (if given)
@@ -64,6 +64,9 @@ void read_accuracy(const Reader& r, const YAML::Node& node, RunSettings& run);
 void check_accuracy_overrides(std::span<const RunOverride> overrides, bool scene_accuracy);
 void read_gears(const Reader& r, const YAML::Node& gears, const YAML::Node& racks, System& out,
                 SystemInfo& info);
+
+// transmissions: (load_transmissions.cpp), added to `out` at the fidelity each names.
+void read_transmissions(const Reader& r, const YAML::Node& node, System& out, SystemInfo& info);
 
 // loads: chains: (load_chains.cpp), added to `out`.
 // The body named at map[key] (a gear's, a rack's or a chain's): a body of the system, or

@@ -138,6 +138,64 @@ void compare(bool pinned) {
   ::testing::Test::RecordProperty("max_phi_difference", std::to_string(worst));
 }
 
+// The element (add_transmission) at `fidelity`: the same train, the ratios relative to the input.
+System element(TransmissionFidelity fidelity) {
+  System s("element");
+  s.add_body(housing_body(kHousing, {}));
+  TransmissionDef d{.name = "gearbox", .housing = "case", .input = "input", .fidelity = fidelity};
+  const char* names[] = {"input", "idler", "output"};
+  for (int k = 0; k < 3; ++k) {
+    TransmissionShaftDef sh{.name = names[k], .shaft = kShafts[k]};
+    sh.shaft.ratio = kShafts[k].ratio / kShafts[0].ratio;
+    if (k == 2) sh.torque = [](double) { return tau_load; };
+    d.shafts.push_back(sh);
+  }
+  add_transmission(s, d);
+  housing_support(s, true);
+  return s;
+}
+
+// Both fidelities of the element against the train built by hand (full(true)): the housing, the
+// pivot's reaction and gearbox.phi (the input's angle relative to the housing, rho_in times the
+// output's).
+TEST(Transmission, ElementAtEitherFidelityEqualsTheTrainByHand) {
+  const double rho_in = kShafts[0].ratio, w0 = 0.8, phi_dot0 = 3.0;
+  const Model mh = build_model(full(true));
+  ForwardOptions o{.t1 = 1.0, .samples = 11, .rtol = 1e-11, .atol = 1e-13};
+  o.efforts = {[](double) { return u_motor; }};
+  const Trajectory rh = forward_dynamics(
+      mh,
+      consistent_state(
+          mh, {.positions = {}, .velocities = {{"case.w", w0}, {"output.w", w0 + phi_dot0}}}),
+      o);
+  for (auto f : {TransmissionFidelity::full, TransmissionFidelity::lumped}) {
+    const Model me = build_model(element(f));
+    ASSERT_EQ(me.input_labels(), std::vector<std::string>{"gearbox.torque"});
+    const Trajectory re = forward_dynamics(
+        me,
+        consistent_state(me,
+                         {.positions = {},
+                          .velocities = {{"case.w", w0}, {"gearbox.phi.rate", rho_in * phi_dot0}}}),
+        o);
+    for (int i = 0; i < rh.time.size(); ++i) {
+      for (const char* c : {"case.X.x", "case.X.y"})
+        EXPECT_NEAR(rh.q0(i, rh.column(c)), re.q0(i, re.column(c)), 1e-8) << c;
+      EXPECT_NEAR(rh.q1(i, rh.rate_column("case.w")), re.q1(i, re.rate_column("case.w")), 1e-7);
+      for (const char* c : {"pivot.Fx", "pivot.Fy"})
+        EXPECT_NEAR(rh.reactions(i, rh.reaction(c)), re.reactions(i, re.reaction(c)), 1e-6) << c;
+      const double rel = rh.q0(i, rh.column("rel")) - rh.q0(0, rh.column("rel"));
+      EXPECT_NEAR(re.q0(i, re.column("gearbox.phi")), rho_in * rel, 1e-7) << rh.time[i];
+    }
+  }
+  System bad = element(TransmissionFidelity::lumped);
+  TransmissionDef d{.name = "second", .housing = "cse", .input = "x"};
+  d.shafts.push_back({.name = "x", .shaft = kShafts[0]});
+  EXPECT_THROW(add_transmission(bad, d), Error);  // no such housing
+  d.housing = "case";
+  d.input = "y";
+  EXPECT_THROW(add_transmission(bad, d), Error);  // the input is not a shaft
+}
+
 TEST(Transmission, InvariantsAndParameters) {
   const LumpedTransmission L = lump_transmission(kHousing, kShafts);
   double sigma = 0, s = 0, p = 0;
