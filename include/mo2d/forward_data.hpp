@@ -112,6 +112,8 @@ struct ForwardData {
   // coordinates: an integrator that does not project stops there (forward_run.hpp, Recorder)
   double eval_min_ratio = INFINITY, eval_min_t = 0;
   VectorXd eval_min_q0;
+  // the conditioning of the last evaluation (INFINITY where the formulation does not estimate it)
+  double eval_ratio = INFINITY;
 
   // ---- projection (written by projection) ------------------------------------------------------
   VectorXd psi;            // m0: position residual psi(q0, t)

@@ -228,6 +228,7 @@ void ForwardData::accelerations(double t, const VectorXd& q0, const VectorXd& q1
 void ForwardData::load(double t, const VectorXd& q0, const VectorXd& q1, bool baumgarte) {
   ++stats.rhs_evaluations;
   accel_ok = true;
+  eval_ratio = INFINITY;
   fill_velocity_rows(t, q0);
   acceleration_rhs(m, q0, q1, t, c);
   if (baumgarte) {
@@ -368,6 +369,7 @@ void ForwardData::solve_null_space(double t, const VectorXd& q0) {
 }
 
 double ForwardData::note_conditioning(double t, const VectorXd& q0, double ratio) {
+  eval_ratio = ratio;
   if (ratio < eval_min_ratio) {
     eval_min_ratio = ratio;
     eval_min_t = t;
