@@ -30,10 +30,11 @@
 namespace mo2d {
 
 namespace detail {
-class SmallLU;       // dense LU of the small systems of one evaluation (src/linalg/small_lu.hpp)
-class SparseEngine;  // the sparse path's matrices and factorizations
-                     // (src/forward/sparse_engine.hpp)
-struct SlotEntry;    // an entry of A owned by a body slot, for the reactions (src/dynamics/)
+class SmallLU;          // dense LU of the small systems of one evaluation (src/linalg/small_lu.hpp)
+class SparseEngine;     // the sparse path's matrices and factorizations
+                        // (src/forward/sparse_engine.hpp)
+class StructuredSchur;  // the Schur complement along A's pattern (src/linalg/structured_schur.hpp)
+struct SlotEntry;       // an entry of A owned by a body slot, for the reactions (src/dynamics/)
 }  // namespace detail
 
 struct ForwardData {
@@ -50,7 +51,7 @@ struct ForwardData {
   const ForwardOptions o;
 
   // With sparse linear algebra (ForwardOptions::linear_algebra, uses_sparse) the dense matrices
-  // below (M, Minv, A, Psi, An, AMinv, G1, KKT, H, K, S, CtMC, M0, W0) stay empty: their sparse
+  // below (M, Minv, A, Psi, An, G1, KKT, H, K, S, CtMC, M0, W0) stay empty: their sparse
   // counterparts live in the engine (sparse_engine()), the vectors are the same.
 
   // ---- constant (written by init) --------------------------------------------------------------
@@ -82,11 +83,11 @@ struct ForwardData {
   VectorXd lambda;     // m1: multipliers, M a = f + B u - A^T lambda (warm start of the next one)
   VectorXd local;      // slots: body-local applied forces before their sum into f (eq. 5.27)
   VectorXd row_scale;  // m1: N, 1 / |row i of A diag(d)|: unit dimensionless rows
-  // Direct solve by the Schur complement (has_Minv): An = N A (m1 x n1), AMinv = An M^-1 (m1 x
-  // n1), G1 = An M^-1 An^T (m1 x m1, Cholesky llt_G), r1 = An M^-1 rhs - N c (m1) -> lambda_n.
-  // The conditioning test without M^-1 (row_conditioning) writes An = N A D and G1 = An An^T.
-  MatrixXd An, AMinv, G1;
-  Eigen::LLT<MatrixXd> llt_G;
+  // Direct solve by the Schur complement (has_Minv): N A M^-1 A^T N lambda_n = N A M^-1 rhs - N c
+  // along the pattern of A (src/linalg/structured_schur.hpp), r1 (m1) -> lambda_n. The
+  // conditioning test without M^-1 (row_conditioning) writes An = N A D and G1 = An An^T; H_of
+  // writes An = N A.
+  MatrixXd An, G1;
   VectorXd r1;  // m1: Schur right-hand side / multipliers (also the projection's A q1 - b)
   // KKT formulation (and the direct solve without M^-1): KKT = [M A^T; A 0] ((n1 + m1)^2, LU),
   // kkt_x = [a; lambda] (n1 + m1)
@@ -112,6 +113,8 @@ struct ForwardData {
   // coordinates: an integrator that does not project stops there (forward_run.hpp, Recorder)
   double eval_min_ratio = INFINITY, eval_min_t = 0;
   VectorXd eval_min_q0;
+  // the conditioning of the last evaluation (INFINITY where the formulation does not estimate it)
+  double eval_ratio = INFINITY;
 
   // ---- projection (written by projection) ------------------------------------------------------
   VectorXd psi;            // m0: position residual psi(q0, t)
@@ -183,6 +186,7 @@ struct ForwardData {
  private:
   std::unique_ptr<detail::SparseEngine> sparse_;
   std::unique_ptr<detail::SmallLU> lu_kkt_, lu_K_, lu_G1_;  // of KKT, K and G1
+  std::unique_ptr<detail::StructuredSchur> schur_;          // the direct solve when has_Minv
   std::vector<detail::SlotEntry> entries_;  // reactions: A entries attributed to body slots
   bool quasi_steady_ = false;               // the model has quasi-steady springs
 

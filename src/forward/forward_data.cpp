@@ -18,6 +18,7 @@
 #include "kinematics/conditioning.hpp"
 #include "kinematics/solve_positions.hpp"
 #include "linalg/small_lu.hpp"
+#include "linalg/structured_schur.hpp"
 #include "mo2d/dynamics.hpp"
 #include "mo2d/error.hpp"
 #include "mo2d/kinematics.hpp"
@@ -64,6 +65,23 @@ void init_vectors(ForwardData& d) {
   d.friction = d.friction_next = VectorXd::Zero(static_cast<int>(d.m.frictions.size()));
 }
 
+// Records the columns of the entries of each velocity row (their values are ignored): A's pattern.
+struct PatternSink {
+  std::vector<std::vector<int>>& rows;
+  void add(int row, const VarRef& ref, double /*value*/) {
+    if (ref.var >= 0) rows[row].push_back(ref.var);
+  }
+};
+
+// The pattern of A (fixed by the constraints' kinds and variables, the state only sets values).
+std::vector<std::vector<int>> velocity_pattern(const Model& m) {
+  std::vector<std::vector<int>> rows(m.m1);
+  PatternSink sink{rows};
+  VectorXd rhs = VectorXd::Zero(m.m1);
+  for (const auto& c : m.constraints) detail::velocity_rows(m, c, m.q0, 0.0, rhs, sink);
+  return rows;
+}
+
 }  // namespace
 
 ForwardData::ForwardData(const Model& model, const ForwardOptions& opt) : m(model), o(opt) {
@@ -80,7 +98,6 @@ ForwardData::ForwardData(const Model& model, const ForwardOptions& opt) : m(mode
   An = MatrixXd::Zero(m.m1, m.n1);
   G1 = MatrixXd::Zero(m.m1, m.m1);
   lu_G1_ = std::make_unique<detail::SmallLU>(m.m1);
-  AMinv = MatrixXd::Zero(m.m1, m.n1);
   {
     // on the dimensionless D M D (D = col_scale): the test does not depend on units or size
     Eigen::LLT<MatrixXd> llt_M(col_scale.asDiagonal() * M * col_scale.asDiagonal());
@@ -91,6 +108,10 @@ ForwardData::ForwardData(const Model& model, const ForwardOptions& opt) : m(mode
     if (has_Minv)  // M^-1 = D (D M D)^-1 D
       Minv = col_scale.asDiagonal() * llt_M.solve(MatrixXd::Identity(m.n1, m.n1)) *
              col_scale.asDiagonal();
+  }
+  if (has_Minv) {
+    schur_ = std::make_unique<detail::StructuredSchur>();
+    schur_->analyse(velocity_pattern(m), Minv);
   }
   KKT = MatrixXd::Zero(m.n1 + m.m1, m.n1 + m.m1);
   KKT.topLeftCorner(m.n1, m.n1) = M;
@@ -159,23 +180,10 @@ double ForwardData::solve_schur() {
     a.noalias() = Minv * rhs;
     return 1.0;
   }
-  row_scale_of(A, col_scale, row_scale);
-  An = row_scale.asDiagonal() * A;
-  AMinv.noalias() = An * Minv;
-  G1.noalias() = AMinv * An.transpose();
-  llt_G.compute(G1);
-  const auto d = llt_G.matrixLLT().diagonal();
-  const double dmax = d.maxCoeff(), dmin = d.minCoeff();
-  const double ratio =
-      (llt_G.info() == Eigen::Success && dmax > 0) ? (dmin / dmax) * (dmin / dmax) : 0;
+  if (!schur_->covers(A)) schur_->grow(A, Minv);  // an entry outside the pattern (allocates)
+  const double ratio = schur_->factor(A, col_scale, row_scale);
   if (!(ratio >= kDirectAccept)) return ratio;
-  tmp0.noalias() = Minv * rhs;  // unconstrained accelerations
-  r1 = -c.cwiseProduct(row_scale);
-  r1.noalias() += AMinv * rhs;
-  llt_G.solveInPlace(r1);  // lambda_n
-  a = tmp0;
-  a.noalias() -= AMinv.transpose() * r1;
-  lambda = r1.cwiseProduct(row_scale);
+  schur_->solve(rhs, c, row_scale, r1, a, lambda);
   return ratio;
 }
 
@@ -228,6 +236,7 @@ void ForwardData::accelerations(double t, const VectorXd& q0, const VectorXd& q1
 void ForwardData::load(double t, const VectorXd& q0, const VectorXd& q1, bool baumgarte) {
   ++stats.rhs_evaluations;
   accel_ok = true;
+  eval_ratio = INFINITY;
   fill_velocity_rows(t, q0);
   acceleration_rhs(m, q0, q1, t, c);
   if (baumgarte) {
@@ -368,6 +377,7 @@ void ForwardData::solve_null_space(double t, const VectorXd& q0) {
 }
 
 double ForwardData::note_conditioning(double t, const VectorXd& q0, double ratio) {
+  eval_ratio = ratio;
   if (ratio < eval_min_ratio) {
     eval_min_ratio = ratio;
     eval_min_t = t;

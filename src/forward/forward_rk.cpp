@@ -10,6 +10,16 @@
 // regularized and not accurate (ForwardData::accel_ok). The true motion is smooth through such an
 // instant, so a step whose stages avoid it is accurate: a step with an inaccurate stage is redone
 // shorter (its stages move), with the factors of kRetry in turn.
+//
+// Projected stages: a stage state is off the constraint manifolds by the stage's own error (O(h^2):
+// explicit RK stages are first order). Near a singular instant the accelerations there are wrong
+// by that deviation / sigma_min (the motion of a slightly violated constraint cannot pass the
+// singular configuration at finite speed), an O(h^2) error whatever the method's order: erk8 at
+// rtol 5e-9 saw error estimates of 1e4 on every straddling step and left the branch. A step whose
+// stage is evaluated where the direct solve is refused (conditioning < kProjectBelow) is redone
+// with every stage projected on the manifolds first: the step of y' = f(P(y)), a smooth ODE with
+// the same solutions on the manifolds, so the method keeps its order, and the deviation enters
+// through P only (second order in it in the degenerate direction).
 #include <algorithm>
 #include <array>
 #include <cmath>
@@ -109,6 +119,10 @@ Tableau tableau(Integrator i) {
 // Step-length factors tried in turn when a stage falls on a singular instant: shorter ones first,
 // varied so that no stage lands again where one failed; then longer ones, for steps too short to
 // jump over the instant's neighbourhood (where the regularized accelerations are not accurate).
+// Stages are projected in a step that evaluates one where the direct solve is refused
+// (ForwardData::kDirectAccept: (sigma_min / sigma_max)^2 < 1e-2).
+constexpr double kProjectBelow = ForwardData::kDirectAccept;
+
 constexpr std::array<double, 11> kRetry = {0.5, 0.3, 0.7, 0.2, 0.85, 1.5, 2, 3, 4, 6, 8};
 
 // One run of an explicit RK method. The state y = (q0, q1, the energy terms of EnergyTerm), the
@@ -183,9 +197,9 @@ class RkDriver {
     if (!budget_.stall_warning().empty() && d_.stats.warnings.size() < 20)
       d_.stats.warnings.push_back(budget_.stall_warning());
     // the tightest tolerance each method kept through the double four-bar's singular passages
-    // (docs/performance.md): dopri5 5e-10; erk6 and erk8 1e-8 (erk8 at rtol 1e-9 with atol
-    // 5e-10, and both at 1e-10, could not step over some passages: errors 1e-4 to 2e-2)
-    const double floor = tab_.order > 5 ? 1e-8 : 5e-10;
+    // (docs/performance.md): dopri5 5e-10; erk6 and erk8 1e-11 with projected stages (erk6 at
+    // 1e-12 ended 1.1e-8 away, worse than at 1e-11)
+    const double floor = tab_.order > 5 ? 1e-11 : 5e-10;
     if (tab_.embedded && d_.stats.regularized_evaluations > 0 && o_.rtol < floor &&
         d_.stats.warnings.size() < 20)
       d_.stats.warnings.push_back(
@@ -208,6 +222,7 @@ class RkDriver {
   std::array<VectorXd, kMaxStages> k_;
   VectorXd k_start_, k_next_;  // rates at the start of the next step (at the end of the last one)
   bool have_start_ = false;
+  bool project_stages_ = false;
   VectorXd q0_, q1_, y_stage_, err_;
 
   void split(const VectorXd& y) {
@@ -217,6 +232,7 @@ class RkDriver {
   // dy/dt at (t, y) into k; false if the accelerations are not accurate there
   bool derivative(double t, const VectorXd& y, VectorXd& k) {
     split(y);
+    if (project_stages_) d_.project(t, q0_, q1_, 1e-13 * m_.scale, 1e-13 * m_.scale);
     d_.accelerations(t, q0_, q1_, !project_);
     k.head(m_.n0) = q1_.head(m_.n0);
     k.segment(m_.n0, m_.n1) = d_.a;
@@ -230,6 +246,7 @@ class RkDriver {
   bool step(double t, const VectorXd& y, double h, VectorXd& y_new, double& err,
             bool check = true) {
     bool ok = true;
+    project_stages_ = false;
     for (int i = 0; i < tab_.stages; ++i) {
       if (i == 0 && have_start_ &&
           check) {  // the rates at the start: evaluated when the last step ended
@@ -240,6 +257,13 @@ class RkDriver {
       for (int j = 0; j < i; ++j)
         if (tab_.a[i][j] != 0) y_stage_.noalias() += (h * tab_.a[i][j]) * k_[j];
       ok = derivative(t + tab_.c[i] * h, y_stage_, k_[i]) && ok;
+      if (!project_stages_ && project_ && i > 0 && d_.eval_ratio < kProjectBelow) {
+        // near a singular instant: redo the step's stages projected (k_[0] is at y, projected)
+        project_stages_ = true;
+        ok = true;
+        i = 0;
+        continue;
+      }
       if (!ok && check) return false;
     }
     y_new = y;
@@ -264,6 +288,7 @@ class RkDriver {
     if (!check) return true;
     // the next step starts here: its first rates must be accurate too, or the next step could
     // not avoid the instant whatever its length
+    project_stages_ = false;
     return derivative(t + h, y_new, k_next_);
   }
   // Take one accepted step from (t, y) with a first try of length hh; `used` returns the length

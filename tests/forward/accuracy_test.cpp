@@ -30,11 +30,9 @@ double double_fourbar_error(double accuracy, int samples) {
   const State s = consistent_state(m, {.positions = {}, .velocities = {{"crank0.w", -1.0}}});
   const Trajectory r =
       forward_dynamics(m, s, {.t0 = 0, .t1 = 10, .samples = samples, .accuracy = accuracy});
-  // erk8 from 1e-5 up, dopri5 from 1e-6, rk4 below (src/forward/accuracy.cpp)
+  // erk8 from 1e-8 up, rk4 below (src/forward/accuracy.cpp)
   EXPECT_EQ(options_for_accuracy(m, {.accuracy = accuracy}).integrator,
-            accuracy >= 1e-5   ? Integrator::erk8
-            : accuracy >= 1e-6 ? Integrator::dopri5
-                               : Integrator::rk4);
+            accuracy >= 1e-8 ? Integrator::erk8 : Integrator::rk4);
   const int k = static_cast<int>(r.time.size()) - 1;
   return std::hypot(r.q0(k, m.coordinate("crank0.B.x")) - 0.328458111541,
                     r.q0(k, m.coordinate("crank0.B.y")) - 0.944518538179) /
@@ -90,7 +88,7 @@ TEST(Accuracy, RackPinionSceneClosedForm) {
     EXPECT_EQ(scene.run.accuracy, a);
     const Model m = build_scene_model(scene);
     const ForwardOptions o = forward_options(scene, m);
-    EXPECT_EQ(o.integrator, a >= 1e-5 ? Integrator::erk8 : Integrator::rk4);  // no 1e-6 here
+    EXPECT_EQ(o.integrator, a >= 1e-8 ? Integrator::erk8 : Integrator::rk4);
     const Trajectory r = forward_dynamics(m, initial_state(scene, m), o);
     const double rr = 0.05, mass = 3, I = 0.01, k = 200, T = 0.5;
     const double xe = -T / (rr * k), w = std::sqrt(k / (mass + I / (rr * rr)));
