@@ -509,7 +509,7 @@ struct Model {
   // the torsional springs and the chains
   std::vector<TorsionalLoad> torsional_springs;
   std::vector<ReducedTorsional> reduced_torsional;  // torsional springs replaced by constraints
-  std::vector<ChainLoad> chains;
+  std::vector<ChainLoad> chains;                    // the chain and belt drives
   // the named points
   std::vector<NamedPoint> points;
   // the joint frictions

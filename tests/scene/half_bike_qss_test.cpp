@@ -1,4 +1,4 @@
-// The QSS half-bike (mechanisms/half_bike_qss.yaml: the suspension reduce: quasi_steady, the chain
+// The QSS half-bike (tests/data/half_bike_qss.yaml: the suspension reduce: quasi_steady, the chain
 // fidelity: quasi_steady; Gamba 2009, 2.32-2.40): the file is half_bike.yaml with its five
 // documented changes.
 #include <gtest/gtest.h>
@@ -24,9 +24,16 @@ std::string read(const std::string& name) {
   return s.str();
 }
 
+std::string read_data(const std::string& name) {
+  std::ifstream in(std::string(MO2D_TEST_DATA_DIR) + "/" + name);
+  std::stringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+
 TEST(HalfBikeQss, IsTheFullSceneWithItsFiveChanges) {
   std::string full = read("half_bike.yaml");
-  const std::string qss = read("half_bike_qss.yaml");
+  const std::string qss = read_data("half_bike_qss.yaml");
   const std::string line = "# ---- mechanisms/half_bike.yaml, changed as above ----\n";
   ASSERT_NE(qss.find(line), std::string::npos);
   auto edit = [&](const std::string& a, const std::string& b) {
