@@ -35,16 +35,25 @@ Fidelity chain_fidelity(const std::string& name, const std::string& integrator, 
 }
 
 // The chain's fidelities of a scene; `rigid_velocities` its initial velocities with the chain's
-// row (one fewer). quasi_steady is not written for chains yet: skipped ("not available in this
-// build") where the scene loader refuses it; with DOPRI5, as the quasi-steady springs' held
-// lengths need an explicit integrator that projects (cvode_bdf is refused, start_quasi_steady).
+// row (one fewer). quasi_steady runs with dopri5 only (cvode_bdf is refused with QSS rows).
 std::vector<Fidelity> chain_fidelities(const std::string& rigid_velocities) {
   return {chain_fidelity("unilateral", "cvode_bdf", false),
           chain_fidelity("unilateral", "dopri5", false),
           chain_fidelity("bilateral", "cvode_bdf", false),
           chain_fidelity("inextensible", "cvode_bdf", true, rigid_velocities),
           chain_fidelity("inextensible", "dopri5", true, rigid_velocities),
-          chain_fidelity("quasi_steady", "dopri5", true)};
+          chain_fidelity("quasi_steady", "dopri5", true, rigid_velocities)};
+}
+
+// The thesis's QSS half-bike (tests/data/half_bike_qss.yaml): the chain and the suspension
+// quasi-steady, one initial velocity left.
+Fidelity qss_half_bike() {
+  return {.name = "QSS half-bike (DOPRI5)",
+          .edits = {{"loads.chains.chain.fidelity", "quasi_steady"},
+                    {"loads.torsional_springs.suspension.reduce", "quasi_steady"},
+                    {"initial.velocities", "{shaft.w: 0}"}},
+          .integrator = "dopri5",
+          .optional = true};
 }
 
 // The net chain force T_upper - T_lower: the chain's torque on sprocket b over r_b.
@@ -63,6 +72,7 @@ SceneCase half_bike(const std::string& dir) {
                {"swing-arm angle", {{"arm.W.x", 1}, {"arm.W.y", 1}}, true, 0, 0},
                net_tension()};
   s.fidelities = chain_fidelities("{shaft.w: 0, arm.w: 0}");
+  s.fidelities.push_back(qss_half_bike());
   return s;
 }
 

@@ -140,6 +140,9 @@ Box2DWorld build_box2d_world(const Model& m, const Eigen::VectorXd& q0, const Ei
       refuse("torque '" + tl.name + "' depends on the state (not translated)", tl.name);
   for (const TorsionalLoad& s : m.torsional_springs)
     refuse("torsional spring '" + s.name + "' is not translated", s.name);
+  for (const ReducedTorsional& s : m.reduced_torsional)  // before its user position constraint
+    refuse("torsional spring '" + s.spring.name + "' reduced to a constraint is not translated",
+           s.spring.name);
   for (const ChainLoad& c : m.chains)
     refuse("chain '" + c.name + "' is not translated (Box2D has no chain or belt drive)", c.name);
   for (const FrictionLoad& f : m.frictions)

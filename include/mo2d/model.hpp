@@ -338,6 +338,19 @@ struct TorsionalLoad {
   double stiffness = 0, damping = 0, rest = 0;
   CompiledLaw torque;  // empty: linear
 };
+// A torsional spring reduced to a constraint (TorsionalSpringDef::reduce,
+// src/model/reduced_torsional.cpp): the user position constraint wrap(theta_2 - theta_1 - rest
+// - a) = 0, a = 0 (reduce: constraint) or the held angle of a HeldLength cell (quasi_steady:
+// its `length` is the angle from rest, mo2d/quasi_steady.hpp), m.constraints[constraint]; the
+// torque on body 2 is minus its multiplier, m.reactions[reaction] ("name.torque").
+struct ReducedTorsional {
+  // the torsional spring it replaces (not applied)
+  TorsionalLoad spring;
+  // index of its constraint in Model::constraints and of its reaction in Model::reactions
+  int constraint = -1, reaction = -1;
+  // quasi_steady: points at the cell's first member (HeldLength::length, held_of); else null
+  std::shared_ptr<double> held_angle{};
+};
 
 // A chain or belt drive (ChainDef; its spans' lengths and forces in src/dynamics/chain.hpp).
 struct ChainLoad {
@@ -364,6 +377,9 @@ struct ChainLoad {
   // forward_dynamics switches the spans (src/forward/chain_switching.cpp).
   int constraint = -1, active_span = -1;
   bool mode_fixed = false;
+  // ChainFidelity::quasi_steady (compiled as inextensible): the lengths the upper and lower span
+  // rows hold, HeldLength cells (mo2d/quasi_steady.hpp; the taut span's rest + T / k); else null
+  std::shared_ptr<double> held[2]{};
 };
 
 // Friction in a joint (FrictionDef; evaluated in src/dynamics/friction.cpp). Its value F (N or
@@ -492,7 +508,8 @@ struct Model {
   std::vector<ReducedSpring> reduced_springs;  // springs replaced by constraints (not loads)
   // the torsional springs and the chains
   std::vector<TorsionalLoad> torsional_springs;
-  std::vector<ChainLoad> chains;
+  std::vector<ReducedTorsional> reduced_torsional;  // torsional springs replaced by constraints
+  std::vector<ChainLoad> chains;                    // the chain and belt drives
   // the named points
   std::vector<NamedPoint> points;
   // the joint frictions

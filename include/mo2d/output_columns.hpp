@@ -11,7 +11,9 @@
 //                      S.power (-tension x rate: the power of its forces on the mechanism);
 //                      a spring reduced to a constraint: S.length, S.rate (its tension is the
 //                      reaction column S.tension)
-//   torsional spring K K.torque (on body 2, N m), K.rate (w2 - w1), K.power (torque x rate)
+//   torsional spring K K.torque (on body 2, N m), K.rate (w2 - w1), K.power (torque x rate);
+//                      reduced to a constraint: K.angle (from rest, rad), K.rate (its torque is
+//                      the reaction column K.torque)
 //   named point P      P.x, P.y, P.vx, P.vy
 //   body B             B.com.x, B.com.y, B.com.vx, B.com.vy (centre of mass)
 // The powers of the forces, torques and springs given by a law sum to load_power (what the energy

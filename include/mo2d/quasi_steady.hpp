@@ -15,6 +15,9 @@
 // the row holds L extrapolated linearly from the last two settled lengths, so that the state moves
 // with the quasi-steady manifold (its rate the slow manifold's, z2 = dT/dt, not the thesis's
 // z2 = 0, which a state in positions and velocities cannot follow without a jump every step).
+// The same holds for a torsional spring (its cell the angle a from rest, held where the torque
+// law at zero rate gives the row's torque tau: a = -tau / k when linear) and for a quasi-steady
+// chain (the taut span's length rest + T / k; the idle span's cell waits at its rest length).
 #include <Eigen/Core>
 #include <atomic>
 #include <cmath>
@@ -57,23 +60,26 @@ inline HeldLength& held_of(const ReducedSpring& s) {
 double quasi_steady_length(const Model& m, const ReducedSpring& s, double T,
                            const Eigen::VectorXd& q0, const Eigen::VectorXd& q1, double t);
 
-// Whether m has quasi-steady springs.
+// Whether m has quasi-steady elements (springs, torsional springs, chains).
 bool has_quasi_steady(const Model& m);
 
-// Every quasi-steady spring's held length back to its rest length (the state a Model is built in;
-// forward_dynamics calls it at its end).
+// Every quasi-steady element's held value back to rest (the rest length; a torsional spring's
+// angle from rest 0; the state a Model is built in; forward runs do it at their end).
 void reset_quasi_steady(const Model& m);
 
 namespace detail {
-// A forward run's hold on the quasi-steady springs of a Model, for the run's lifetime: the
-// constructor claims every held-length cell (an Error naming the model if another run holds one),
-// the destructor puts them back to the rest lengths and releases them, also when the run throws,
-// so that inverse dynamics, modes and the next run see the Model as built.
+// A forward run's hold on the quasi-steady elements of a Model (springs, torsional springs,
+// chain spans), for the run's lifetime: the constructor claims every held-length cell (an Error
+// naming the model if another run holds one) and puts them at rest, the destructor puts them back
+// to rest and releases them, also when the run throws, so that inverse dynamics, modes and the
+// next run see the Model as built. legs: a run made of several forward runs on this thread (the
+// inextensible chains' span switching, src/forward/chain_switching.cpp): while it holds the cells,
+// the legs' own holds do nothing and the lengths carry over from leg to leg.
 class QuasiSteadyRun {
  public:
-  // Claims m's cells (none: nothing to do).
-  explicit QuasiSteadyRun(const Model& m);
-  // Resets and releases the cells.
+  // Claims m's cells (none: nothing to do; inside a run of legs: nothing at all).
+  explicit QuasiSteadyRun(const Model& m, bool legs = false);
+  // Resets and releases the cells (if it claimed them).
   ~QuasiSteadyRun();
   QuasiSteadyRun(const QuasiSteadyRun&) = delete;
   QuasiSteadyRun& operator=(const QuasiSteadyRun&) = delete;
@@ -81,16 +87,18 @@ class QuasiSteadyRun {
  private:
   const Model& m_;
   std::vector<HeldLength*> held_;
+  bool owns_ = false, legs_ = false;
 };
 
 // Project (q0, q1) on the constraints with the quasi-steady lengths settled at t (above).
 // Throws Error naming the spring if the fixed point does not converge in 30 passes.
 void settle_quasi_steady(ForwardData& d, double t, Eigen::VectorXd& q0, Eigen::VectorXd& q1,
                          double tol_pos, double tol_vel);
-// The start of a forward run: the held lengths from the rest lengths, settled on the initial
-// state (which moves onto them). Throws Error naming the springs for an integrator that does
-// not project (cvode_adams, baumgarte): it could not follow the lengths; and for cvode_bdf, whose
-// step history does not follow their updates at the projections (it fails or crawls).
+// The start of a forward run: the held lengths from the rest lengths (a leg of a run of legs:
+// from the lengths held at its start), settled on the initial state (which moves onto them). Throws
+// Error naming the springs for an integrator that does not project (cvode_adams, baumgarte): it
+// could not follow the lengths; and for cvode_bdf, whose step history does not follow their updates
+// at the projections (it fails or crawls).
 void start_quasi_steady(ForwardData& d, double t, Eigen::VectorXd& q0, Eigen::VectorXd& q1);
 }  // namespace detail
 

@@ -256,6 +256,9 @@ enum class SpringActs { both, tension_only, compression_only };
 //    them (mo2d/quasi_steady.hpp). Needs stiffness > 0 or a tension law; forward runs with an
 //    explicit integrator that projects only (dopri5, rk4, erk6, erk8). A Model with such springs
 //    holds their current lengths: one forward run at a time per Model object.
+// A torsional spring takes the same values (TorsionalSpringDef::reduce): its relative angle held
+// at rest (constraint) or at the angle where its own law at zero rate gives the row's torque
+// (quasi_steady), the torque on body 2 the reaction "name.torque".
 enum class SpringReduce { none, constraint, quasi_steady };
 
 // A spring-damper between two points fixed in bodies ("ground" allowed), given in the System's
@@ -292,8 +295,11 @@ struct SpringDef {
 // length), or a bilateral spring (also pushes: the upper- and lower-span models of Gamba 2009,
 // §2.5), or inextensible: the taut span's material length held at its rest length by a holonomic
 // constraint whose multiplier is its tension, the spans switching by the sign of the tension
-// (slack in between; src/model/inextensible_chains.cpp, src/forward/chain_switching.cpp).
-enum class ChainFidelity { unilateral, bilateral, inextensible };
+// (slack in between; src/model/inextensible_chains.cpp, src/forward/chain_switching.cpp); or
+// quasi_steady: the inextensible chain's rows and switching, the taut span's length held at
+// rest + T / k (its spring law at zero rate under its tension T; mo2d/quasi_steady.hpp; needs
+// stiffness > 0 and an explicit integrator that projects).
+enum class ChainFidelity { unilateral, bilateral, inextensible, quasi_steady };
 
 // A chain or belt drive between two sprockets (or pulleys): sprocket a of pitch radius radius_a
 // centred at centre_a, fixed in body_a, and sprocket b likewise ("ground" allowed for either: a
@@ -340,6 +346,8 @@ struct TorsionalSpringDef {
   double damping = 0;            // N m s / rad; with a torque law: must be 0
   std::optional<double> rest{};  // rad; default: the relative angle at the initial configuration
   Law torque{};                  // N m on body 2 (and -torque on body 1); empty: the linear law
+  // as written, or reduced to a constraint (SpringReduce: rest angle, or quasi-steady angle)
+  SpringReduce reduce = SpringReduce::none;
 };
 
 // Friction in a joint (src/dynamics/friction.hpp): a generalized force along the joint's own

@@ -21,7 +21,9 @@
 // warnings naming the chain, the span and the time. Both spans taut at once, an initial span
 // longer than its rest length, and switches that chatter (more than kChatter at one instant) are
 // errors naming the chain and the time. The recorded samples are the output grid's; the
-// integrated energy terms carry over from segment to segment.
+// integrated energy terms carry over from segment to segment. A quasi-steady chain (ChainLoad::
+// held) switches alike, its taut span at rest + T / k (mo2d/quasi_steady.hpp): the run holds the
+// quasi-steady cells across its legs (QuasiSteadyRun with legs) and resets them at its end.
 #include <Eigen/LU>
 #include <algorithm>
 #include <chrono>
@@ -33,6 +35,7 @@
 #include "mo2d/dynamics.hpp"
 #include "mo2d/error.hpp"
 #include "mo2d/kinematics.hpp"
+#include "mo2d/quasi_steady.hpp"
 #include "output/trajectory_labels.hpp"
 
 namespace mo2d::detail {
@@ -463,16 +466,13 @@ Trajectory forward_chain_switching(const Model& m, const State& initial, const F
                       " does not project on the constraints, and the span's length must be held "
                       "there: use cvode_bdf, dopri5, erk6, erk8 or rk4",
                   c.name);
-  for (const ReducedSpring& s : m.reduced_springs)
-    if (s.held_length)  // each leg would restart the held lengths from the rest lengths
-      throw Error("spring '" + s.spring.name +
-                      "' (reduce: quasi_steady) with inextensible chains is not supported yet",
-                  s.spring.name);
   if (o.stop_when)
     throw Error("forward dynamics of '" + m.name +
                     "': a stop condition (stop_when) with inextensible chains is not supported "
                     "(the span switching uses it)",
                 m.name);
+  // quasi-steady elements: their held lengths carry over the legs, reset when the run ends
+  const QuasiSteadyRun held(m, true);
   return Switcher(m, o).run(initial);
 }
 

@@ -16,125 +16,214 @@ namespace {
 
 using detail::fmt;
 
-// Which of the spring's own quantities a law argument is: its length (1), extension (2), rate
-// (3), or another quantity of the state (0). Labels as compile_law resolved them (spring_quantity).
-int own_quantity(const std::string& label, const std::string& name) {
+// Which of the element's own quantities a law argument is: its length (1), extension or angle
+// from rest (2), rate (3), or another quantity of the state (0). Labels as compile_law resolved
+// them (spring_quantity; a torsional spring's "angle" and "rate").
+int own_quantity(const std::string& label, const std::string& name, bool torsional) {
   for (const auto& [suffix, kind] :
-       {std::pair{"length", 1}, std::pair{"extension", 2}, std::pair{"rate", 3}})
+       {std::pair{"length", 1}, std::pair{"extension", 2}, std::pair{"rate", 3}}) {
+    if (torsional && kind != 3) continue;
     if (label == suffix || label == name + "." + suffix) return kind;
+  }
+  if (torsional && (label == "angle" || label == name + ".angle")) return 2;
   return 0;
 }
 
-[[noreturn]] void no_length(const ReducedSpring& s, double T, double t, const std::string& why) {
-  throw Error("spring '" + s.spring.name + "' (reduce: quasi_steady): no equilibrium length for " +
-                  "the tension " + fmt(T) + " N at t = " + fmt(t) + " s (" + why +
+// The law of a quasi-steady element for Newton: its compiled law, name, rest value (a length, or
+// 0 for an angle from rest) and what it is (for messages).
+struct LawOf {
+  const CompiledLaw& law;
+  const std::string& name;
+  double rest;
+  bool torsional;
+};
+
+[[noreturn]] void no_length(const LawOf& e, double T, double t, const std::string& why) {
+  throw Error(std::string(e.torsional ? "torsional spring '" : "spring '") + e.name +
+                  "' (reduce: quasi_steady): no equilibrium " +
+                  (e.torsional ? "angle for the torque " + fmt(T) + " N m"
+                               : "length for the tension " + fmt(T) + " N") +
+                  " at t = " + fmt(t) + " s (" + why +
                   "); keep it as a spring (no reduce) or use reduce: constraint",
-              s.spring.name, t);
+              e.name, t);
 }
 
-// Newton on T_law(l, rate 0) - T = 0 from l (the law's derivative by its Jet).
-double law_length(const Model& m, const ReducedSpring& s, double T, double l,
-                  const Eigen::VectorXd& q0, const Eigen::VectorXd& q1, double t) {
-  const CompiledLaw& law = s.spring.tension;
+// Newton on law(l, rate 0) - T = 0 from l (the law's derivative by its Jet).
+double law_root(const Model& m, const LawOf& e, double T, double l, const Eigen::VectorXd& q0,
+                const Eigen::VectorXd& q1, double t) {
+  const CompiledLaw& law = e.law;
   const size_t n = law.args.size();
   std::array<Jet, kMaxLawArgs> x;
   std::array<int, kMaxLawArgs> own{};
   for (size_t k = 0; k < n; ++k) {
-    own[k] = own_quantity(law.labels[k], s.spring.name);
+    own[k] = own_quantity(law.labels[k], e.name, e.torsional);
     if (own[k] == 0) x[k] = Jet(quantity_value(m, law.args[k], q0, q1));
   }
-  const double tol = 1e-13 * std::max(std::abs(l), s.spring.rest_length);
+  const double tol = 1e-13 * std::max({std::abs(l), e.rest, e.torsional ? 1.0 : 0.0});
   for (int it = 0; it < 50; ++it) {
     for (size_t k = 0; k < n; ++k) {
       if (own[k] == 1) x[k] = Jet::variable(l);
-      if (own[k] == 2) x[k] = Jet::variable(l - s.spring.rest_length);
+      if (own[k] == 2) x[k] = Jet::variable(l - e.rest);
       if (own[k] == 3) x[k] = Jet(0.0);
     }
-    const Jet f = detail::call_law(law, std::span<const Jet>(x.data(), n), t,
-                                   "tension law of spring", s.spring.name);
-    if (!std::isfinite(f.v) || !std::isfinite(f.d)) no_length(s, T, t, "the law is not finite");
-    if (f.d == 0) no_length(s, T, t, "d tension / d length = 0 at l = " + fmt(l) + " m");
+    const Jet f = detail::call_law(
+        law, std::span<const Jet>(x.data(), n), t,
+        e.torsional ? "torque law of torsional spring" : "tension law of spring", e.name);
+    if (!std::isfinite(f.v) || !std::isfinite(f.d)) no_length(e, T, t, "the law is not finite");
+    if (f.d == 0) no_length(e, T, t, "its derivative is 0 at " + fmt(l));
     const double step = (f.v - T) / f.d;
     l -= step;
     if (std::abs(step) <= tol) return l;
   }
-  no_length(s, T, t, "Newton on the tension law did not converge");
+  no_length(e, T, t, "Newton on the law did not converge");
 }
+
+HeldLength& cell(const std::shared_ptr<double>& p) {
+  return *reinterpret_cast<HeldLength*>(p.get());
+}
+
+// One held cell of a model: a quasi-steady spring, torsional spring or chain span, and whether
+// its row is in the model (a chain's taut span; the other span's cell waits at rest).
+struct Held {
+  HeldLength* h;
+  double rest;  // the cell's value at rest
+  const ReducedSpring* spring = nullptr;
+  const ReducedTorsional* torsional = nullptr;
+  const ChainLoad* chain = nullptr;
+  int span = -1;
+  bool active = true;
+};
+
+std::vector<Held> held_cells(const Model& m) {
+  std::vector<Held> out;
+  for (const ReducedSpring& s : m.reduced_springs)
+    if (s.held_length)
+      out.push_back({.h = &held_of(s), .rest = s.spring.rest_length, .spring = &s});
+  for (const ReducedTorsional& s : m.reduced_torsional)
+    if (s.held_angle) out.push_back({.h = &cell(s.held_angle), .rest = 0, .torsional = &s});
+  for (const ChainLoad& c : m.chains)
+    for (int span : {0, 1})
+      if (c.held[span])
+        out.push_back({.h = &cell(c.held[span]),
+                       .rest = span == 0 ? c.rest_upper : c.rest_lower,
+                       .chain = &c,
+                       .span = span,
+                       .active = c.active_span == span && c.constraint >= 0});
+  return out;
+}
+
+std::string held_name(const Held& e) {
+  if (e.spring) return e.spring->spring.name;
+  if (e.torsional) return e.torsional->spring.name;
+  return e.chain->name + (e.span == 0 ? ".upper" : ".lower");
+}
+
+void reset_cell(HeldLength& h, double rest) {
+  h.length = rest;
+  h.rate = h.t0 = h.prev_length = 0;
+  h.prev_t = NAN;
+}
+
+// The reaction column of a chain's taut span ("name.upper.tension" or "name.lower.tension").
+int span_reaction(const Model& m, const ChainLoad& c, int span) {
+  const std::string label = c.name + (span == 0 ? ".upper.tension" : ".lower.tension");
+  for (int j = 0; j < m.n_reactions(); ++j)
+    if (m.reactions[j].label == label) return j;
+  throw Error("quasi-steady chain '" + c.name + "': no reaction " + label, c.name);
+}
+
+// The held value of e under its row's reaction at the state (a length, or an angle from rest).
+double equilibrium(const Model& m, const Held& e, const Eigen::VectorXd& reactions,
+                   const Eigen::VectorXd& q0, const Eigen::VectorXd& q1, double t) {
+  if (e.spring) return quasi_steady_length(m, *e.spring, reactions[e.spring->reaction], q0, q1, t);
+  if (e.torsional) {
+    const TorsionalLoad& l = e.torsional->spring;
+    const double tau = reactions[e.torsional->reaction];  // on body 2
+    if (!l.torque) return -tau / l.stiffness;             // tau = -k a: a = -tau / k
+    return law_root(m, {l.torque, l.name, 0.0, true}, tau, e.h->at(t), q0, q1, t);
+  }
+  const ChainLoad& c = *e.chain;  // T = k (l - rest) at zero rate: l = rest + T / k
+  return e.rest + reactions[span_reaction(m, c, e.span)] / c.stiffness;
+}
+
+// Set by a run of several legs (inextensible chains' span switching) on its thread while it holds
+// the cells: the legs' own runs neither claim nor reset them.
+thread_local bool t_legs_held = false;
 
 }  // namespace
 
 bool has_quasi_steady(const Model& m) {
-  for (const ReducedSpring& s : m.reduced_springs)
-    if (s.held_length) return true;
-  return false;
+  return !held_cells(m).empty();
 }
 
 void reset_quasi_steady(const Model& m) {
-  for (const ReducedSpring& s : m.reduced_springs) {
-    if (!s.held_length) continue;
-    HeldLength& h = held_of(s);
-    h.length = s.spring.rest_length;
-    h.rate = h.t0 = h.prev_length = 0;
-    h.prev_t = NAN;
-  }
+  for (const Held& e : held_cells(m)) reset_cell(*e.h, e.rest);
 }
 
 double quasi_steady_length(const Model& m, const ReducedSpring& s, double T,
                            const Eigen::VectorXd& q0, const Eigen::VectorXd& q1, double t) {
   if (!s.spring.tension) return s.spring.rest_length + T / s.spring.stiffness;  // l_0 + T / k
   const double from = s.held_length ? held_of(s).at(t) : s.spring.rest_length;
-  return law_length(m, s, T, from, q0, q1, t);
+  return law_root(m, {s.spring.tension, s.spring.name, s.spring.rest_length, false}, T, from, q0,
+                  q1, t);
 }
 
 namespace detail {
 
-QuasiSteadyRun::QuasiSteadyRun(const Model& m) : m_(m) {
-  for (const ReducedSpring& s : m.reduced_springs) {
-    if (!s.held_length) continue;
-    HeldLength& h = held_of(s);
-    if (h.in_use.exchange(true)) {
+QuasiSteadyRun::QuasiSteadyRun(const Model& m, bool legs) : m_(m) {
+  if (t_legs_held) return;  // a leg of a run that holds the cells (legs_ false: nothing to undo)
+  for (const Held& e : held_cells(m)) {
+    if (e.h->in_use.exchange(true)) {
       for (HeldLength* other : held_) other->in_use = false;
-      throw Error("forward dynamics of '" + m.name + "': the quasi-steady spring '" +
-                      s.spring.name +
+      throw Error("forward dynamics of '" + m.name + "': the quasi-steady element '" +
+                      held_name(e) +
                       "' is held by another forward run on this model (or a copy of it): the "
                       "held lengths are the model's, one run at a time; build a model per thread",
-                  s.spring.name);
+                  held_name(e));
     }
-    held_.push_back(&h);
+    held_.push_back(e.h);
   }
+  owns_ = true;
+  reset_quasi_steady(m);
+  if (legs) legs_ = t_legs_held = true;
 }
 
 QuasiSteadyRun::~QuasiSteadyRun() {
+  if (!owns_) return;
+  if (legs_) t_legs_held = false;
   reset_quasi_steady(m_);
   for (HeldLength* h : held_) h->in_use = false;
 }
 
 namespace {
 
-// One pass: T at the state, each held length moved to L_law(T) at t (its rate kept); returns
-// the largest move.
+// One pass: the reactions at the state, each active held value moved to its equilibrium at t
+// (its rate kept); returns the largest move.
 double settle_pass(ForwardData& d, double t, const Eigen::VectorXd& q0, const Eigen::VectorXd& q1) {
   const Model& m = d.m;
   d.accelerations(t, q0, q1, false);
   d.compute_reactions(t, q0, q1);
   double moved = 0;
-  for (const ReducedSpring& s : m.reduced_springs) {
-    if (!s.held_length) continue;
-    HeldLength& h = held_of(s);
-    const double L = quasi_steady_length(m, s, d.reactions[s.reaction], q0, q1, t);
-    moved = std::max(moved, std::abs(L - h.at(t)));
-    h.length = L;
-    h.t0 = t;
+  for (const Held& e : held_cells(m)) {
+    if (!e.active) continue;
+    const double L = equilibrium(m, e, d.reactions, q0, q1, t);
+    moved = std::max(moved, std::abs(L - e.h->at(t)));
+    e.h->length = L;
+    e.h->t0 = t;
   }
   return moved;
 }
 
-// The settled lengths at t become the start of the next interval: L(t') = L_n + Ldot_n (t' - t_n)
-// with Ldot_n the rate since the last settling (0 at the first).
+// The settled values at t become the start of the next interval: L(t') = L_n + Ldot_n (t' - t_n)
+// with Ldot_n the rate since the last settling (0 at the first). A chain's idle span waits at
+// rest (its history forgotten: it engages from its rest length).
 void extrapolate(const Model& m, double t) {
-  for (const ReducedSpring& s : m.reduced_springs) {
-    if (!s.held_length) continue;
-    HeldLength& h = held_of(s);
+  for (const Held& e : held_cells(m)) {
+    HeldLength& h = *e.h;
+    if (!e.active) {
+      reset_cell(h, e.rest);
+      continue;
+    }
     h.rate = std::isfinite(h.prev_t) && t != h.prev_t ? (h.length - h.prev_length) / (t - h.prev_t)
                                                       : 0.0;
     h.prev_length = h.length;
@@ -157,8 +246,8 @@ void settle_quasi_steady(ForwardData& d, double t, Eigen::VectorXd& q0, Eigen::V
     d.project_held(t, q0, q1, tol_pos, tol_vel);
   }
   std::ostringstream w;
-  w << "quasi-steady springs of '" << m.name << "': their lengths do not settle at t = " << fmt(t)
-    << " s (the tension changes with the length as fast as the springs' own law: they are not "
+  w << "quasi-steady elements of '" << m.name << "': their lengths do not settle at t = " << fmt(t)
+    << " s (the tension changes with the length as fast as the elements' own law: they are not "
        "fast against their loads; keep them as springs)";
   throw Error(w.str(), m.name, t);
 }
@@ -166,17 +255,17 @@ void settle_quasi_steady(ForwardData& d, double t, Eigen::VectorXd& q0, Eigen::V
 void start_quasi_steady(ForwardData& d, double t, Eigen::VectorXd& q0, Eigen::VectorXd& q1) {
   const Model& m = d.m;
   std::string names;
-  for (const ReducedSpring& s : m.reduced_springs)
-    if (s.held_length) names += (names.empty() ? "'" : ", '") + s.spring.name + "'";
+  for (const Held& e : held_cells(m))
+    if (e.span <= 0) names += (names.empty() ? "'" : ", '") + held_name(e) + "'";
   // cvode_bdf projects too, but its step history does not follow the held lengths' updates at
   // its projections (measured: on the mass-spring-mass it fails at the first step)
   if (!d.projects() || d.o.integrator == Integrator::cvode_bdf)
-    throw Error("forward dynamics of '" + m.name + "': the quasi-steady springs " + names +
-                    " (reduce: quasi_steady) need an explicit integrator that projects (dopri5, "
-                    "rk4, erk6, erk8), not " +
+    throw Error("forward dynamics of '" + m.name + "': the quasi-steady elements " + names +
+                    " (reduce or fidelity quasi_steady) need an explicit integrator that projects "
+                    "(dopri5, rk4, erk6, erk8), not " +
                     to_string(d.o.integrator),
                 m.name);
-  reset_quasi_steady(m);
+  if (!t_legs_held) reset_quasi_steady(m);  // a leg goes on from the lengths the last one held
   const double tol = 1e-13 * m.scale;
   d.project(t, q0, q1, tol, tol);
 }

@@ -241,6 +241,9 @@ bool add_inextensible_chains(Model& m);
 // length), the reaction "name.tension" and m.reduced_springs, instead of a load.
 // quasi_steady: the length held is a cell forward runs update (ReducedSpring::held_length).
 void add_reduced_spring(const SpringLoad& s, int owner, Model& m, bool quasi_steady);
+// A torsional spring with reduce (reduced_torsional.cpp): its row (the relative angle at rest, or
+// at the held quasi-steady angle), the reaction "name.torque" and m.reduced_torsional.
+void add_reduced_torsional(const TorsionalLoad& s, int owner, Model& m, bool quasi_steady);
 // Joint friction (frictions.cpp): after the rows (reactions, slides) are known.
 void add_frictions(const Flat& flat, const Elements& el, const Reduced& red, Model& m);
 // laws.cpp: m.quantities from the bodies, nodes, revolute joints, springs and points.

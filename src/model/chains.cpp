@@ -5,10 +5,12 @@
 // straight length there.
 #include <cmath>
 #include <limits>
+#include <memory>
 
 #include "dynamics/chain.hpp"
 #include "dynamics/points.hpp"
 #include "mo2d/error.hpp"
+#include "mo2d/quasi_steady.hpp"
 #include "model/build_stages.hpp"
 
 namespace mo2d::build {
@@ -59,6 +61,13 @@ void add_chains(const Flat& flat, Model& m) {
     c.rest_upper = rest(d.rest_upper, what, "rest_upper", name);
     c.rest_lower = rest(d.rest_lower, what, "rest_lower", name);
     c.fidelity = d.fidelity;
+    if (d.fidelity == ChainFidelity::quasi_steady) {  // the inextensible rows, with held lengths
+      c.fidelity = ChainFidelity::inextensible;
+      for (auto& h : c.held) {
+        const auto cell = std::make_shared<HeldLength>();  // its length: add_inextensible_chains
+        h = std::shared_ptr<double>(cell, &cell->length);  // aliasing: shares the cell
+      }
+    }
     m.chains.push_back(std::move(c));
   }
 }

@@ -17,6 +17,7 @@
 
 #include "dynamics/chain.hpp"
 #include "mo2d/error.hpp"
+#include "mo2d/quasi_steady.hpp"
 #include "model/build_stages.hpp"
 #include "model/point_jets.hpp"
 
@@ -37,7 +38,8 @@ Constraint::UserPosition span_row(const Model& m, const ChainLoad& c, int span) 
   };
   const int ta = theta_arg(c.theta_a), tb = theta_arg(c.theta_b);
   const double rest = span == 0 ? c.rest_upper : c.rest_lower;
-  u.psi = [c, a, b, ta, tb, span, rest](std::span<const Jet> x, Jet t) {
+  const std::shared_ptr<double> held = c.held[span];  // quasi_steady: the held length L(t)
+  u.psi = [c, a, b, ta, tb, span, rest, held](std::span<const Jet> x, Jet t) {
     const JetPoint pa = point_jet(a, x), pb = point_jet(b, x);
     const Jet zero(0.0);
     const detail::ChainInput<Jet> in{pa.x,
@@ -53,7 +55,10 @@ Constraint::UserPosition span_row(const Model& m, const ChainLoad& c, int span) 
                                      zero,
                                      zero};
     const detail::Spans<Jet> sp = detail::chain_spans(c, in, t.v);
-    return (span == 0 ? sp.upper.length : sp.lower.length) - Jet(rest);  // l_s - rest_s
+    const Jet l = span == 0 ? sp.upper.length : sp.lower.length;
+    if (!held) return l - Jet(rest);  // l_s - rest_s
+    const HeldLength& h = *reinterpret_cast<const HeldLength*>(held.get());
+    return l - (Jet(h.length) + Jet(h.rate) * (t - Jet(h.t0)));  // l_s - L_s(t)
   };
   return u;
 }
@@ -68,6 +73,7 @@ void set_factors(Model& m, const ChainLoad& c) {
 // Index maps after erasing reactions: old index -> new (-1: erased).
 void renumber_reactions(Model& m, const std::vector<int>& map) {
   for (ReducedSpring& s : m.reduced_springs) s.reaction = map[s.reaction];
+  for (ReducedTorsional& s : m.reduced_torsional) s.reaction = map[s.reaction];
   for (FrictionLoad& f : m.frictions)
     if (f.reaction >= 0) f.reaction = map[f.reaction];
   for (MergeEdge& e : m.merge_edges)
@@ -93,6 +99,8 @@ void remove_row(Model& m, ChainLoad& c) {
   for (ChainLoad& o : m.chains)
     if (o.constraint > ci) --o.constraint;
   for (ReducedSpring& s : m.reduced_springs)
+    if (s.constraint > ci) --s.constraint;
+  for (ReducedTorsional& s : m.reduced_torsional)
     if (s.constraint > ci) --s.constraint;
   for (FrictionLoad& f : m.frictions)
     if (f.slider > ci) --f.slider;
@@ -122,6 +130,7 @@ bool add_inextensible_chains(Model& m) {
   bool any = false;
   for (ChainLoad& c : m.chains) {
     if (c.fidelity != ChainFidelity::inextensible) continue;
+    if (c.held[0]) *c.held[0] = c.rest_upper, *c.held[1] = c.rest_lower;  // quasi_steady: at rest
     c.active_span = 0;
     c.constraint =
         add_constraint(m, Constraint{.name = c.name, .owner = 0, .def = span_row(m, c, 0)}, 1, 1,

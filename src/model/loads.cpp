@@ -132,7 +132,15 @@ void add_torsional_springs(const Flat& flat, const Elements& el, const Reduced& 
     if (ts.def.torque && (l.stiffness != 0 || l.damping != 0))
       throw Error(what + ": a torque law replaces stiffness and damping (give one or the other)",
                   name);
-    m.torsional_springs.push_back(std::move(l));
+    if (ts.def.reduce == SpringReduce::quasi_steady && !ts.def.torque && !(l.stiffness > 0))
+      throw Error(what +
+                      " (reduce: quasi_steady): needs stiffness > 0 or a torque law (its "
+                      "equilibrium angle under the torque is the angle held)",
+                  name);
+    if (ts.def.reduce != SpringReduce::none)  // reduced_torsional.cpp
+      add_reduced_torsional(l, ts.owner, m, ts.def.reduce == SpringReduce::quasi_steady);
+    else
+      m.torsional_springs.push_back(std::move(l));
   }
 }
 
@@ -198,8 +206,11 @@ void compile_laws(const Flat& flat, Model& m) {
     s.tension = compile_law(m, sp.def.tension, "spring '" + s.name + "'.tension", s.name, sp.prefix,
                             {{"length", q}, {"extension", e}, {"rate", r}});
   }
+  loaded = reduced = 0;  // m.torsional_springs and m.reduced_torsional likewise
   for (size_t k = 0; k < flat.torsional.size(); ++k) {
-    TorsionalLoad& l = m.torsional_springs[k];
+    TorsionalLoad& l = flat.torsional[k].def.reduce == SpringReduce::none
+                           ? m.torsional_springs[loaded++]
+                           : m.reduced_torsional[reduced++].spring;
     Quantity a;
     a.kind = K::relative_angle;
     a.body1 = l.body1;

@@ -3,6 +3,7 @@
 #include "mo2d/output_columns.hpp"
 
 #include <cmath>
+#include <numbers>
 #include <sstream>
 
 #include "dynamics/points.hpp"
@@ -54,6 +55,8 @@ std::vector<std::string> output_column_labels(const Model& m, const OutputReques
     // reduced to a constraint: the tension is the reaction "S.tension", the power 0
     for (const ReducedSpring& s : m.reduced_springs) add(s.spring.name, {"length", "rate"});
     for (const TorsionalLoad& s : m.torsional_springs) add(s.name, {"torque", "rate", "power"});
+    // reduced: the torque is the reaction "K.torque"; the angle from rest and its rate
+    for (const ReducedTorsional& s : m.reduced_torsional) add(s.spring.name, {"angle", "rate"});
     for (const ChainLoad& s : m.chains)
       if (s.fidelity == ChainFidelity::inextensible)  // tensions: the reactions; power 0
         add(s.name, {"upper.length", "lower.length"});
@@ -105,6 +108,13 @@ void output_column_values(const Model& m, const OutputRequest& q,
     for (const TorsionalLoad& s : m.torsional_springs) {
       const TorsionalValue v = torsional_value(m, s, q0, q1, t);
       for (double x : {v.torque, v.rate, v.torque * v.rate}) put(x);
+    }
+    for (const ReducedTorsional& s : m.reduced_torsional) {
+      auto th = [&](int b) { return b < 0 ? 0.0 : body_angle(m.bodies[b], q0); };
+      auto w = [&](int b) { return b < 0 ? 0.0 : omega_value(m.bodies[b].omega, q1); };
+      put(std::remainder(th(s.spring.body2) - th(s.spring.body1) - s.spring.rest,
+                         2 * std::numbers::pi));
+      put(w(s.spring.body2) - w(s.spring.body1));
     }
     for (const ChainLoad& s : m.chains) {
       const ChainValue v = chain_value(m, s, q0, q1, t);

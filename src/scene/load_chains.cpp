@@ -21,13 +21,11 @@ ChainFidelity fidelity(const Reader& r, const YAML::Node& node, const std::strin
   if (v == "unilateral") return ChainFidelity::unilateral;
   if (v == "bilateral") return ChainFidelity::bilateral;
   if (v == "inextensible") return ChainFidelity::inextensible;
-  if (v == "quasi_steady")  // docs/reduction.md, "The quasi-steady-state model": why not yet
-    r.fail(node, what +
-                     ".fidelity: quasi_steady is not written yet for chains (the held-length "
-                     "mechanism of reduce: quasi_steady on the inextensible chain's span row; a "
-                     "spring can be reduced so: reduce: quasi_steady)");
-  const std::vector<std::string> names = {"unilateral", "bilateral", "inextensible"};
-  r.fail(node, what + ".fidelity: '" + v + "' is not one of unilateral, bilateral, inextensible" +
+  if (v == "quasi_steady") return ChainFidelity::quasi_steady;
+  const std::vector<std::string> names = {"unilateral", "bilateral", "inextensible",
+                                          "quasi_steady"};
+  r.fail(node, what + ".fidelity: '" + v +
+                   "' is not one of unilateral, bilateral, inextensible, quasi_steady" +
                    did_you_mean(v, names));
 }
 

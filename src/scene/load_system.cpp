@@ -409,7 +409,7 @@ void read_loads(Context& c, const YAML::Node& node, bool root) {
   for (const auto& [key, value] : r.entries(node["torsional_springs"], "loads.torsional_springs")) {
     check_plain_name(r, key, "torsional spring");
     const std::string what = "torsional spring '" + key.Scalar() + "'";
-    r.check_keys(value, {"joint", "stiffness", "damping", "rest", "torque"}, what);
+    r.check_keys(value, {"joint", "stiffness", "damping", "rest", "torque", "reduce"}, what);
     TorsionalSpringDef s;
     s.name = key.Scalar();
     const YAML::Node joint = r.required(value, "joint", what);
@@ -424,6 +424,7 @@ void read_loads(Context& c, const YAML::Node& node, bool root) {
     if (s.torque && (value["stiffness"].IsDefined() || value["damping"].IsDefined()))
       r.fail(value["torque"],
              what + ": a torque law replaces stiffness and damping (give one or the other)");
+    s.reduce = spring_reduce(r, value["reduce"], what);
     c.info.elements.emplace_back(s.name, r.at(key));
     c.out.add_torsional_spring(std::move(s));
   }

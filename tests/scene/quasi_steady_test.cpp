@@ -115,7 +115,7 @@ TEST(QuasiSteady, SparsePathAgreesAndBox2DRefusesByName) {
     crosscheck_forward(flat, initial_state(scene, flat), 0.1);
     FAIL() << "Box2D accepted a quasi-steady spring";
   } catch (const Error& e) {
-    EXPECT_NE(std::string(e.what()).find("springs 'link' (reduce: quasi_steady)"),
+    EXPECT_NE(std::string(e.what()).find("elements 'link' (reduce or fidelity quasi_steady)"),
               std::string::npos)
         << e.what();
   }
@@ -291,24 +291,13 @@ TEST(QuasiSteady, BadInputIsRefusedByName) {
     run(pendulum("quasi_steady"), {},
         [](ForwardOptions& o) { o.integrator = Integrator::cvode_adams; });
   });
-  EXPECT_NE(e.find("quasi-steady springs 's'"), std::string::npos) << e;
+  EXPECT_NE(e.find("quasi-steady elements 's'"), std::string::npos) << e;
   EXPECT_NE(e.find("need an explicit integrator that projects"), std::string::npos) << e;
   e = error_of([&] {
     run(pendulum("quasi_steady"), {},
         [](ForwardOptions& o) { o.integrator = Integrator::cvode_bdf; });
   });
   EXPECT_NE(e.find("not cvode_bdf"), std::string::npos) << e;
-  // a chain: not written yet, refused at its fidelity key
-  std::ifstream in(std::string(MO2D_MECHANISMS_DIR) + "/chain_drive.yaml");
-  std::stringstream chain;
-  chain << in.rdbuf();
-  text = chain.str();
-  text.replace(text.find("fidelity: unilateral}"), 20, "fidelity: quasi_steady");
-  e = error_of([&] { parse_scene(text, "chain.yaml"); });
-  EXPECT_NE(e.find("chain.yaml:52:"), std::string::npos) << e;
-  EXPECT_NE(e.find("chain 'chain'.fidelity: quasi_steady is not written yet for chains"),
-            std::string::npos)
-      << e;
   // a law without an equilibrium length for the tension: T = 0.001 atan2(extension, 1) saturates
   e = error_of([&] { run(pendulum("quasi_steady", "0.001 * atan2(extension, 1)")); });
   EXPECT_NE(e.find("spring 's' (reduce: quasi_steady): no equilibrium length"), std::string::npos)

@@ -1,0 +1,189 @@
+// The quasi-steady chain (ChainFidelity::quasi_steady: the inextensible chain's span rows and
+// switching, the taut span's length held at rest + T / k; mo2d/quasi_steady.hpp) against
+// independent computations, on two flywheels on fixed centres (as tests/dynamics/
+// inextensible_chain_test.cpp):
+//  - a constant torque: the tension is the closed form T_u = I_b rho alpha_a / r_b (a span held at
+//    a constant length turns the sprockets as rigidly as the inextensible one), and the upper
+//    span's length is rest + T_u / k;
+//  - the torque reversing at t_s: the switch to the lower span at t_s, the lower span's length
+//    then rest + T_l / k, the held lengths back at rest after the run (and after a run that
+//    throws);
+//  - the stiff unilateral chain's spring force k e + c de/dt tends to the QSS tension as 1/k.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <string>
+#include <vector>
+
+#include "dynamics/chain.hpp"
+#include "mo2d/dynamics.hpp"
+#include "mo2d/forward.hpp"
+#include "mo2d/mo2d.hpp"
+#include "mo2d/quasi_steady.hpp"
+
+using namespace mo2d;
+
+namespace qss_chain_test {
+
+constexpr double ra = 0.04, rb = 0.1, Ia = 0.01, Ib = 0.4, tau0 = 2.0, ts = 0.5;
+constexpr double rho = ra / rb;
+
+BodyDef disc(const std::string& name, Vec2 c, double inertia) {
+  return {.name = name,
+          .nodes = {{"C", c}, {"R", c + Vec2(0.05, 0.01)}},
+          .mass = 1,
+          .inertia = inertia};
+}
+
+// Two flywheels on ground axes 0.5 m apart, the drive torque `torque` on a, a chain, a viscous
+// bearing on b.
+System flywheels(std::function<double(double)> torque, ChainFidelity f, double k,
+                 double damping = 0, double bearing = 0) {
+  System s("flywheels");
+  s.add_ground_node("A", {0, 0});
+  s.add_ground_node("B", {0.5, 0});
+  s.add_body(disc("a", {0, 0}, Ia));
+  s.add_body(disc("b", {0.5, 0}, Ib));
+  s.add_revolute({.name = "pa", .node_a = "ground.A", .node_b = "a.C"});
+  s.add_revolute({.name = "pb", .node_a = "ground.B", .node_b = "b.C"});
+  if (bearing > 0) s.add_torsional_spring({.name = "bearing", .joint = "pb", .damping = bearing});
+  s.add_torque({.name = "drive", .body = "a", .torque = std::move(torque)});
+  s.add_chain({.name = "chain",
+               .body_a = "a",
+               .centre_a = {0, 0},
+               .radius_a = ra,
+               .body_b = "b",
+               .centre_b = {0.5, 0},
+               .radius_b = rb,
+               .stiffness = k,
+               .damping = damping,
+               .fidelity = f});
+  return s;
+}
+
+// At rest: a.w alone with the chain's row (quasi_steady), both rates with spring spans.
+State at_rest(const Model& m) {
+  if (m.chains[0].held[0])
+    return consistent_state(m, {.positions = {}, .velocities = {{"a.w", 0.0}}});
+  return consistent_state(m, {.positions = {}, .velocities = {{"a.w", 0.0}, {"b.w", 0.0}}});
+}
+
+ForwardOptions options(double t1, int samples) {
+  return {.t1 = t1,
+          .samples = samples,
+          .integrator = Integrator::dopri5,
+          .rtol = 1e-11,
+          .atol = 1e-13,
+          .max_seconds = 60};
+}
+
+double upper_tension(double tau) {  // I_b alpha_b = r_b T_u, alpha_b = rho alpha_a
+  return Ib * rho * tau / (Ia + rho * rho * Ib) / rb;
+}
+
+ChainValue value_at(const Model& m, const Trajectory& r, Eigen::Index i) {
+  return chain_value(m, m.chains[0], r.q0.row(i).transpose(), r.q1.row(i).transpose(), r.time[i]);
+}
+
+double held(const Model& m, int span) {
+  return *m.chains[0].held[span];
+}
+
+TEST(QssChain, ConstantTorqueClosedFormTensionAndHeldLength) {
+  const double k = 1e4;
+  const Model m =
+      build_model(flywheels([](double) { return tau0; }, ChainFidelity::quasi_steady, k));
+  const Trajectory r = forward_dynamics(m, at_rest(m), options(1, 11));
+  const int Tu = r.reaction("chain.upper.tension");
+  const double T = upper_tension(tau0);
+  double worst_T = 0, worst_l = 0;
+  for (Eigen::Index i = 0; i < r.time.size(); ++i) {
+    worst_T = std::max(worst_T, std::abs(r.reactions(i, Tu) - T));
+    const ChainValue v = value_at(m, r, i);
+    if (i > 0)
+      worst_l = std::max(worst_l, std::abs(v.upper_length - (m.chains[0].rest_upper + T / k)));
+  }
+  std::printf(
+      "QSS chain, constant torque: max |T_u - closed form| %.3g N (T_u %.6f N), "
+      "max |l_u - (rest + T/k)| %.3g m (T/k = %.3g m)\n",
+      worst_T, T, worst_l, T / k);
+  EXPECT_LT(worst_T, 1e-6 * T);
+  EXPECT_LT(worst_l, 1e-10);
+  EXPECT_GT(T / k, 1e-3);                         // the stretch the check resolves
+  EXPECT_EQ(held(m, 0), m.chains[0].rest_upper);  // reset when the run ends
+}
+
+TEST(QssChain, SwitchesAtTheClosedFormTimeAndHoldsTheLowerSpanAtRestPlusTOverK) {
+  const double k = 1e4;
+  const Model m = build_model(
+      flywheels([](double t) { return tau0 * (1 - t / ts); }, ChainFidelity::quasi_steady, k));
+  const Trajectory r = forward_dynamics(m, at_rest(m), options(1, 101));
+  double t_switch = NAN;
+  for (const std::string& w : r.stats.warnings) {
+    std::printf("  %s\n", w.c_str());
+    if (std::isnan(t_switch) && w.find("upper span's tension reaches 0") != std::string::npos)
+      t_switch = std::stod(w.substr(w.find("t = ") + 4));
+  }
+  EXPECT_NEAR(t_switch, ts, 1e-7);
+  const int Tu = r.reaction("chain.upper.tension"), Tl = r.reaction("chain.lower.tension");
+  double worst_l = 0, worst_T = 0;
+  for (Eigen::Index i = 1; i < r.time.size(); ++i) {
+    const double t = r.time[i], T = upper_tension(tau0 * (1 - t / ts));
+    const ChainValue v = value_at(m, r, i);
+    if (t < ts - 1e-9) {
+      worst_T = std::max(worst_T, std::abs(r.reactions(i, Tu) - T));
+      worst_l = std::max(worst_l, std::abs(v.upper_length - (m.chains[0].rest_upper + T / k)));
+    } else if (t > ts + 1e-9) {
+      worst_T = std::max(worst_T, std::abs(r.reactions(i, Tl) + T));
+      worst_l = std::max(worst_l, std::abs(v.lower_length - (m.chains[0].rest_lower - T / k)));
+    }
+  }
+  std::printf("QSS chain, switching: max tension error %.3g N, max |l - (rest + T/k)| %.3g m\n",
+              worst_T, worst_l);
+  // the held length moves with T (linear in t): rest + T/k up to the projection tolerance
+  EXPECT_LT(worst_l, 1e-9);
+  EXPECT_LT(worst_T, 1e-5);
+  EXPECT_EQ(held(m, 0), m.chains[0].rest_upper);
+  EXPECT_EQ(held(m, 1), m.chains[0].rest_lower);
+  // a run that throws (its step budget) puts the cells back too
+  ForwardOptions o = options(1, 101);
+  o.max_steps = 30;
+  EXPECT_THROW(forward_dynamics(m, at_rest(m), o), Error);
+  EXPECT_EQ(held(m, 0), m.chains[0].rest_upper);
+  EXPECT_EQ(held(m, 1), m.chains[0].rest_lower);
+  EXPECT_NO_THROW(forward_dynamics(m, at_rest(m), options(0.2, 3)));  // the cells released
+}
+
+// The stiff unilateral chain (damped, a viscous bearing: its ring-down gone by t = 1 s) against
+// the QSS chain of the same stiffness: the spring force k e + c de/dt tends to the QSS tension as
+// 1/k (its damping force c dT/dt / k, which the QSS law at zero rate leaves out, and the inertia
+// of the stretch).
+TEST(QssChain, StiffUnilateralChainForceTendsToTheQssTensionAsOneOverK) {
+  auto ramp = [](double t) {
+    const double x = std::min(t / 0.5, 1.0);
+    return tau0 * x * x * x * (10 - 15 * x + 6 * x * x);
+  };
+  ForwardOptions o = options(1, 11);
+  o.rtol = 1e-12;
+  o.atol = 1e-14;
+  std::vector<double> err;
+  for (double k : {1e4, 1e5, 1e6}) {
+    const Model full = build_model(flywheels(ramp, ChainFidelity::unilateral, k, 200, 0.05));
+    ForwardOptions of = o;
+    of.integrator = Integrator::cvode_bdf;
+    const Trajectory rf = forward_dynamics(full, at_rest(full), of);
+    const Model qss = build_model(flywheels(ramp, ChainFidelity::quasi_steady, k, 200, 0.05));
+    const Trajectory rq = forward_dynamics(qss, at_rest(qss), o);
+    const double Tf = value_at(full, rf, 10).upper_tension;
+    const double Tq = rq.reactions(10, rq.reaction("chain.upper.tension"));
+    err.push_back(Tf - Tq);
+    std::printf("k = %.0e N/m: stiff chain T_u %.9f N, QSS %.9f N, difference %.3e N\n", k, Tf, Tq,
+                err.back());
+  }
+  for (size_t i = 1; i < err.size(); ++i) {
+    EXPECT_GT(err[i - 1] / err[i], 6) << i;
+    EXPECT_LT(err[i - 1] / err[i], 16) << i;
+  }
+}
+
+}  // namespace qss_chain_test
