@@ -44,7 +44,8 @@ TransmissionShaftDef read_shaft(const Reader& r, const YAML::Node& key, const YA
   return s;
 }
 
-TransmissionFidelity fidelity(const Reader& r, const YAML::Node& value, const std::string& what) {
+TransmissionFidelity transmission_fidelity(const Reader& r, const YAML::Node& value,
+                                           const std::string& what) {
   if (!value["fidelity"].IsDefined()) return TransmissionFidelity::full;
   const YAML::Node n = value["fidelity"];
   const std::string f = r.string(n, what + ".fidelity");
@@ -88,7 +89,7 @@ void read_transmissions(const Reader& r, const YAML::Node& node, System& out, Sy
     TransmissionDef d;
     d.name = key.Scalar();
     d.housing = body_of(r, value, "housing", what, info, false);
-    d.fidelity = fidelity(r, value, what);
+    d.fidelity = transmission_fidelity(r, value, what);
     const YAML::Node shafts = r.required(value, "shafts", what);
     for (const auto& [k, v] : r.entries(shafts, what + ".shafts")) {
       if (std::find(info.bodies.begin(), info.bodies.end(), k.Scalar()) != info.bodies.end())
