@@ -36,9 +36,7 @@ ChainFidelity fidelity(const Reader& r, const YAML::Node& node, const std::strin
 void read_chains(const Reader& r, const YAML::Node& chains, System& out, SystemInfo& info) {
   for (const auto& [key, value] : r.entries(chains, "loads.chains")) {
     const std::string& s = key.Scalar();
-    if (s.find_first_of(".,: \t") != std::string::npos || s == "ground")
-      r.fail(key,
-             "chain '" + s + "': names may not contain '.', ',', ':' or spaces, nor be 'ground'");
+    check_element_name(r, key, "chain");
     const std::string what = "chain '" + s + "'";
     r.check_keys(value,
                  {"body_a", "centre_a", "radius_a", "body_b", "centre_b", "radius_b", "stiffness",

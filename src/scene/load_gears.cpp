@@ -9,14 +9,6 @@ namespace mo2d::scene_detail {
 
 namespace {
 
-void check_element_name(const Reader& r, const YAML::Node& key, const std::string& what) {
-  const std::string& s = key.Scalar();
-  if (s.find_first_of(".,: \t") != std::string::npos || s == "ground")
-    r.fail(key, what + " '" + s +
-                    "': names may not contain '.', ',', ':' or spaces, nor be "
-                    "'ground'");
-}
-
 double non_zero(const Reader& r, const YAML::Node& map, const char* key, const std::string& what) {
   const YAML::Node n = r.required(map, key, what);
   const double v = r.number(n, what + "." + key);
@@ -25,6 +17,14 @@ double non_zero(const Reader& r, const YAML::Node& map, const char* key, const s
 }
 
 }  // namespace
+
+void check_element_name(const Reader& r, const YAML::Node& key, const std::string& what) {
+  const std::string& s = key.Scalar();
+  if (s.find_first_of(".,: \t") != std::string::npos || s == "ground")
+    r.fail(key, what + " '" + s +
+                    "': names may not contain '.', ',', ':' or spaces, nor be "
+                    "'ground'");
+}
 
 std::string body_of(const Reader& r, const YAML::Node& map, const char* key,
                     const std::string& what, const SystemInfo& info, bool ground_allowed) {

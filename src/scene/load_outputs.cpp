@@ -13,9 +13,7 @@ namespace mo2d::scene_detail {
 void read_points(const Reader& r, const YAML::Node& node, System& out, SystemInfo& info) {
   for (const auto& [key, value] : r.entries(node, "points")) {
     const std::string& name = key.Scalar();
-    if (name.find_first_of(".,: \t") != std::string::npos || name == "ground")
-      r.fail(key, "point '" + name +
-                      "': names may not contain '.', ',', ':' or spaces, nor be 'ground'");
+    check_element_name(r, key, "point");
     const std::string what = "point '" + name + "'";
     r.check_keys(value, {"body", "point"}, what);
     const YAML::Node body = r.required(value, "body", what);

@@ -68,6 +68,9 @@ void read_gears(const Reader& r, const YAML::Node& gears, const YAML::Node& rack
 // transmissions: (load_transmissions.cpp), added to `out` at the fidelity each names.
 void read_transmissions(const Reader& r, const YAML::Node& node, System& out, SystemInfo& info);
 
+// An element's name at `key` (a gear's, rack's, chain's, transmission's, shaft's, point's): an
+// error at the key's line if it holds '.', ',', ':' or spaces, or is "ground" (load_gears.cpp).
+void check_element_name(const Reader& r, const YAML::Node& key, const std::string& what);
 // loads: chains: (load_chains.cpp), added to `out`.
 // The body named at map[key] (a gear's, a rack's or a chain's): a body of the system, or
 // "ground" where ground_allowed; an error at the key's line otherwise, with a suggestion.

@@ -11,14 +11,6 @@ namespace mo2d::scene_detail {
 
 namespace {
 
-void check_name(const Reader& r, const YAML::Node& key, const std::string& what) {
-  const std::string& s = key.Scalar();
-  if (s.find_first_of(".,: \t") != std::string::npos || s == "ground")
-    r.fail(key, what + " '" + s +
-                    "': names may not contain '.', ',', ':' or spaces, nor be "
-                    "'ground'");
-}
-
 double nonnegative(const Reader& r, const YAML::Node& map, const char* key, const std::string& what,
                    const char* unit) {
   const YAML::Node n = r.required(map, key, what);
@@ -30,7 +22,7 @@ double nonnegative(const Reader& r, const YAML::Node& map, const char* key, cons
 // shafts: {name: {axis, mass, inertia, ratio, torque}}
 TransmissionShaftDef read_shaft(const Reader& r, const YAML::Node& key, const YAML::Node& value,
                                 const std::string& element, SystemInfo& info) {
-  check_name(r, key, "shaft");
+  check_element_name(r, key, "shaft");
   const std::string what = "transmission '" + element + "' shaft '" + key.Scalar() + "'";
   r.check_keys(value, {"axis", "mass", "inertia", "ratio", "torque"}, what);
   TransmissionShaftDef s;
@@ -83,7 +75,7 @@ void record(const TransmissionDef& d, const Location& at, SystemInfo& info) {
 // transmissions: {name: {housing, input, fidelity, shafts}}
 void read_transmissions(const Reader& r, const YAML::Node& node, System& out, SystemInfo& info) {
   for (const auto& [key, value] : r.entries(node, "transmissions")) {
-    check_name(r, key, "transmission");
+    check_element_name(r, key, "transmission");
     const std::string what = "transmission '" + key.Scalar() + "'";
     r.check_keys(value, {"housing", "input", "fidelity", "shafts"}, what);
     TransmissionDef d;
