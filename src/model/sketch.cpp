@@ -23,7 +23,10 @@ std::string num(double v) {
   return s.str();
 }
 std::string point_str(const Vec2& p) {
-  return "(" + num(p.x()) + ", " + num(p.y()) + ")";
+  std::ostringstream s;  // one stream: GCC 12 warns (-Wrestrict, a false positive) on "(" + string
+  s.precision(4);
+  s << '(' << p.x() << ", " << p.y() << ')';
+  return s.str();
 }
 
 // The inverse of a placement: p = R x + o -> x.
