@@ -14,6 +14,26 @@
 #include "mo2d/expression.hpp"
 #include "mo2d/scene.hpp"
 
+// A const look-up `node[key]` that finds nothing returns an invalid node carrying the key's text
+// (for the message of a later YAML::InvalidNode), which yaml-cpp 0.7 writes through a
+// std::stringstream (YAML::key_to_string): about 3,500 instructions a look-up, 83 look-ups of
+// optional keys and 0.3 M of `mo2d info mechanisms/double_fourbar.yaml` (docs/performance.md,
+// "CLI start-up"). For the key types the scene reader uses (string literals, const char*,
+// std::string) the same text without a stream. Declared here, before any look-up: every file that
+// reads YAML includes this header. (yaml-cpp 0.7 declares the template in the global namespace.)
+template <std::size_t N>
+struct streamable_to_string<char[N], true> {
+  static std::string impl(const char (&key)[N]) { return std::string(key); }
+};
+template <>
+struct streamable_to_string<const char*, true> {
+  static std::string impl(const char* key) { return key ? std::string(key) : std::string(); }
+};
+template <>
+struct streamable_to_string<std::string, true> {
+  static std::string impl(const std::string& key) { return key; }
+};
+
 namespace mo2d::scene_detail {
 
 using Entries = std::vector<std::pair<YAML::Node, YAML::Node>>;  // (key, value) in file order
