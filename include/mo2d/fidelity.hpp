@@ -40,7 +40,8 @@ struct CompliantElement {
   // the element's name in the model
   std::string name;
   std::string kind;          // "spring", "torsional spring", "chain span" (+ " (taut)")
-  bool reduced = false;      // already reduce: constraint
+  bool reduced = false;      // already reduced (reduce: or a chain's fidelity)
+  std::string reduction;     // how: "reduce: constraint", "fidelity: inextensible", ... ("": not)
   double stiffness = 0;      // local, N/m or N m/rad
   double damping = 0;        // local, N s/m or N m s/rad
   double inertia = 0;        // m_r, kg or kg m^2 (inf: the element's coordinate cannot move)
