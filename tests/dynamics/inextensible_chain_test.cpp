@@ -18,6 +18,7 @@
 #include <vector>
 
 #include "dynamics/chain.hpp"
+#include "forward/chain_log.hpp"
 #include "mo2d/crosscheck.hpp"
 #include "mo2d/dynamics.hpp"
 #include "mo2d/forward.hpp"
@@ -160,6 +161,35 @@ TEST(InextensibleChain, TheStepBudgetIsTheRunsNotEachLegs) {
   ASSERT_GT(r.stats.steps, 2);
   o.max_steps = static_cast<int>(r.stats.steps) - 1;
   EXPECT_THROW(forward_dynamics(m, at_rest(m), o), Error);
+}
+
+// The warnings are not flooded: a torque reversing 30 times with the lower span delta longer
+// (each reversal a slack interval and an engagement with an impulse: 4 lines) lists the first
+// ChainLog::kListed (50) of its lines, in order, and counts the rest in a closing line.
+TEST(InextensibleChain, SwitchLinesBeyondTheFirstFiftyAreCounted) {
+  const double D = 0.5, L0 = std::sqrt(D * D - (ra - rb) * (ra - rb)), delta = 1e-3;
+  const Model m =
+      build_model(flywheels([](double t) { return tau0 * std::sin(6 * std::acos(-1.0) * t); },
+                            ChainFidelity::inextensible, 0, 0, L0 + delta));
+  ForwardOptions o = options(5, 51);
+  o.rtol = 1e-8;
+  o.atol = 1e-10;
+  const Trajectory r = forward_dynamics(m, at_rest(m), o);
+  int engaged = 0, unlisted = 0;
+  for (const std::string& w : r.stats.warnings) {
+    engaged += w.find("engagement, impulse") != std::string::npos;
+    if (w.find("more switch lines not listed") != std::string::npos)
+      unlisted = std::stoi(w.substr(w.find("': ") + 3));
+  }
+  std::printf("30 reversals: %zu warnings, %d engagements listed, %d lines not listed: %s\n",
+              r.stats.warnings.size(), engaged, unlisted, r.stats.warnings.back().c_str());
+  // the start line first, among the listed
+  ASSERT_EQ(r.stats.warnings.size(), detail::ChainLog::kListed + 1u);
+  EXPECT_NE(r.stats.warnings.front().find("(start)"), std::string::npos);
+  EXPECT_GE(engaged, 10);
+  EXPECT_GT(unlisted, 50);
+  EXPECT_EQ(r.stats.warnings.back(), "chain 'chain': " + std::to_string(unlisted) +
+                                         " more switch lines not listed (the first 50 are)");
 }
 
 // The lower span delta longer: slack from ts, the engagement located and its impulse.
