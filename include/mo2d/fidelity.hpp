@@ -2,7 +2,10 @@
 // The fidelity report (docs/reduction.md, "Which springs to reduce"): each compliant element of a
 // model (spring, torsional spring, spring law with a derivative) with its own natural frequency
 // against the time scales of a run, the reduction that would remove it and what that is expected
-// to cost in accuracy. `mo2d info --fidelity SCENE` prints it.
+// to cost in accuracy. Elements already reduced (reduce: constraint | quasi_steady springs and
+// torsional springs, inextensible and quasi-steady chains) are listed with their reduction and
+// the frequency of the mode it removed (their own row left out). `mo2d info --fidelity SCENE`
+// prints it.
 //
 // An element's frequency is that of its own coordinate (the length l of a spring, the relative
 // angle of a torsional spring) with everything else free to follow:
