@@ -252,8 +252,9 @@ TEST(InextensibleChain, TorqueStepIsLocatedPastTheStepAtLooseTolerances) {
       try {
         const Trajectory r = forward_dynamics(m, at_rest(m), o);
         EXPECT_NEAR(time_of(r, "slack from"), ts, 1e-9);
-        // the slack interval to 1% at rtol 1e-4 (seen: dopri5 4e-9 s, the span's length
-        // tolerance; CVODE 9e-6 s at rtol 1e-4 to 2e-7 s at 1e-8)
+        // the slack interval to 1% at rtol 1e-4 (seen: dopri5 7.9e-6 s at rtol 1e-4 to 3.9e-9 s
+        // at 1e-8, the span's length threshold tol_l = atol: (te - ts) atol / (2 delta); CVODE
+        // 2e-7 s to 6e-6 s)
         EXPECT_NEAR(time_of(r, "reaches its rest length"), te, 1e-2 * (te - ts));
         // CVODE's located root is its interpolant, projected (else 5e-6 of the size: an error)
         EXPECT_LT(r.stats.max_drift, 1e-9);
