@@ -94,8 +94,8 @@ Command add_info_command(CLI::App& app) {
   add_scene_options(sub, *o, false);
   auto fidelity = std::make_shared<bool>(false);
   sub->add_flag("--fidelity", *fidelity,
-                "Each spring's and torsional spring's own frequency against the run's time "
-                "scales, and which to reduce (docs/reduction.md)");
+                "Each compliant element's own frequency against the run's time scales, which to "
+                "reduce, and the reduced ones with their fidelity (docs/reduction.md)");
   return {sub, [o, fidelity] { return info(*o, *fidelity); }};
 }
 

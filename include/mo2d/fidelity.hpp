@@ -2,7 +2,10 @@
 // The fidelity report (docs/reduction.md, "Which springs to reduce"): each compliant element of a
 // model (spring, torsional spring, spring law with a derivative) with its own natural frequency
 // against the time scales of a run, the reduction that would remove it and what that is expected
-// to cost in accuracy. `mo2d info --fidelity SCENE` prints it.
+// to cost in accuracy. Elements already reduced (reduce: constraint | quasi_steady springs and
+// torsional springs, inextensible and quasi-steady chains) are listed with their reduction and
+// the frequency of the mode it removed (their own row left out). `mo2d info --fidelity SCENE`
+// prints it.
 //
 // An element's frequency is that of its own coordinate (the length l of a spring, the relative
 // angle of a torsional spring) with everything else free to follow:
@@ -40,7 +43,8 @@ struct CompliantElement {
   // the element's name in the model
   std::string name;
   std::string kind;          // "spring", "torsional spring", "chain span" (+ " (taut)")
-  bool reduced = false;      // already reduce: constraint
+  bool reduced = false;      // already reduced (reduce: or a chain's fidelity)
+  std::string reduction;     // how: "reduce: constraint", "fidelity: inextensible", ... ("": not)
   double stiffness = 0;      // local, N/m or N m/rad
   double damping = 0;        // local, N s/m or N m s/rad
   double inertia = 0;        // m_r, kg or kg m^2 (inf: the element's coordinate cannot move)

@@ -10,27 +10,33 @@
 //                 rest_o - l_o + tol_l   (the other span reaches its length too: both taut)
 //   slack:        rest_s - l_s + tol_l   for both spans (a span reaches its length: engagement)
 //
-// tol_l = 1e-9 rest, tol_T = 1e-9 of the largest tension seen (at least 1e-6 N). At an event the
+// tol_T = max(1e-9, rtol) T_max (T_max the largest tension seen, at least 1e-3 N) and tol_l =
+// max(1e-9 rest, atol): the run's accuracy, no tighter (a tension or length is known only to the
+// integration error; with 1e-9 thresholds the chain four-bar at BDF rtol 1e-4, atol 1e-6 chattered
+// past 10000 switches, its located tensions off 0 by 6e-4 N of 64 N, its lengths by 1.2e-9 m of
+// 0.3 m). A switch is located where T_s = -tol_T (a time error tol_T / |dT/dt|), an engagement
+// tol_l past the length (the assembly puts it back: a jump of at most atol). At an event the
 // new mode is chosen deterministically (choose_span): a span whose tension reaches 0 hands over to
 // the other span if that one is at its length and then pulls (on fixed centres with the default
 // rest lengths both spans are always at their length: a direct switch), else the chain goes
 // slack; a slack span reaching its length engages by a perfectly inelastic impact (the velocities
 // projected on the new row in the mass metric: [M A^T; A 0] [q1+; mu] = [M q1; b], the chain's
 // impulse mu of its row, the kinetic energy lost added to the dissipated energy) and stays taut
-// if its tension is then >= 0. Every switch, slack interval and impulse is a line of the run's
-// warnings naming the chain, the span and the time. Both spans taut at once, an initial span
-// longer than its rest length, and switches that chatter (more than kChatter at one instant) are
-// errors naming the chain and the time. The recorded samples are the output grid's; the
-// integrated energy terms carry over from segment to segment. A quasi-steady chain (ChainLoad::
-// held) switches alike, its taut span at rest + T / k (mo2d/quasi_steady.hpp): the run holds the
-// quasi-steady cells across its legs (QuasiSteadyRun with legs) and resets them at its end.
+// if its tension is then >= -tol_T. The warnings (src/forward/chain_log.hpp) name the chain, the
+// span and the time of every slack interval and impulse; direct handovers (energy lost within
+// rtol: none on fixed centres) are counted, a closing line per chain. Both spans taut at once,
+// an initial span longer than its rest length, and switches that chatter (more than kChatter at
+// one instant) are errors naming the chain and the time. The recorded samples are the output
+// grid's; the integrated energy terms carry over from segment to segment. A quasi-steady chain
+// (ChainLoad::held) switches alike, its taut span at rest + T / k (mo2d/quasi_steady.hpp): the
+// run holds the quasi-steady cells across its legs (QuasiSteadyRun with legs), reset at its end.
 #include <Eigen/LU>
 #include <algorithm>
 #include <chrono>
 #include <cmath>
-#include <cstdio>
 
 #include "dynamics/chain.hpp"
+#include "forward/chain_log.hpp"
 #include "forward/forward_run.hpp"
 #include "mo2d/dynamics.hpp"
 #include "mo2d/error.hpp"
@@ -41,18 +47,12 @@
 namespace mo2d::detail {
 namespace {
 
-constexpr double kSpanTol = 1e-9;    // relative to the rest length
+constexpr double kSpanTol = 1e-9;    // floor of the thresholds, relative to rest and T_max
 constexpr int kChatter = 8;          // switches at one instant before the run is refused
 constexpr int kMaxSwitches = 10000;  // switches in a run before it is refused
 const char* const kSpanName[2] = {"upper", "lower"};
 
-// Times, impulses and energies of the switch lines: 10 significant digits (a switch time is
-// compared with closed forms to 1e-7 s).
-std::string num(double v) {
-  char b[32];
-  std::snprintf(b, sizeof b, "%.10g", v);
-  return b;
-}
+const auto& num = chain_log_number;  // 10 significant digits
 
 struct Lengths {
   double gap[2];  // rest - l of each span (>= 0: not longer than its rest length)
@@ -66,9 +66,6 @@ Lengths lengths(const Model& m, const ChainLoad& c, const VectorXd& q0, const Ve
 
 double rest(const ChainLoad& c, int s) {
   return s == 0 ? c.rest_upper : c.rest_lower;
-}
-double span_tol(const ChainLoad& c, int s) {
-  return kSpanTol * rest(c, s);
 }
 
 // A model of one mode with its event workspace and the reaction columns of the tensions.
@@ -102,8 +99,10 @@ class Switcher {
     for (int i = 0; i < static_cast<int>(m.chains.size()); ++i)
       if (m.chains[i].fidelity == ChainFidelity::inextensible) chains_.push_back(i);
     spans_.assign(chains_.size(), 0);
+    log_ = ChainLog(chains_.size());
     watch_.assign(chains_.size(), false);
     inner_ = o;
+    rel_tension_ = std::max(kSpanTol, o.rtol);
     inner_.accuracy = 0;
     inner_.stop_when = nullptr;
   }
@@ -118,8 +117,10 @@ class Switcher {
   // length is then an event); else both are at their length (fixed centres, the default rest
   // lengths) and its staying there is checked at the recorded samples (check_both_taut)
   std::vector<bool> watch_;
-  double t_ref_ = 0;  // largest tension seen (N)
+  double t_ref_ = 0;        // largest tension seen (N)
+  double rel_tension_ = 0;  // tol_T / T_max: max(1e-9, rtol)
   Trajectory out_;
+  ChainLog log_;
   int filled_ = 0;
   double off_[kEnergyTerms] = {0, 0, 0, 0};
   int same_instant_ = 0, switches_ = 0;
@@ -127,10 +128,20 @@ class Switcher {
   std::chrono::steady_clock::time_point started_ = std::chrono::steady_clock::now();
 
   double tension_ref() const { return std::max(t_ref_, 1e-3); }
-  double tension_tol() const { return kSpanTol * tension_ref(); }
+  double tension_tol() const { return rel_tension_ * tension_ref(); }
+  double span_tol(const ChainLoad& c, int s) const {  // tol_l
+    return std::max(kSpanTol * rest(c, s), o_.atol);
+  }
+  // the conditions, dimensionless: positive inside the mode
+  double tension_cond(double T) const { return (T + tension_tol()) / tension_ref(); }
+  double length_cond(const ChainLoad& c, const Lengths& L, int s) const {
+    return (L.gap[s] + span_tol(c, s)) / rest(c, s);
+  }
   double grid(int k) const { return o_.t0 + (o_.t1 - o_.t0) * k / (o_.samples - 1); }
   const ChainLoad& chain(size_t k) const { return m_.chains[chains_[k]]; }
-  void note(const std::string& line) { out_.stats.warnings.push_back(line); }
+  void note(size_t k, const std::string& line) {
+    if (log_.listed(k)) out_.stats.warnings.push_back(line);
+  }
   std::vector<int> modes_with(size_t k, int s) const {
     std::vector<int> v = spans_;
     v[k] = s;
@@ -141,7 +152,7 @@ class Switcher {
   void append(const Trajectory& leg);
   void start(State& s);
   void switch_at(State& s);
-  bool engage(State& s, size_t k, int span, const char* why);
+  bool engage(State& s, size_t k, int span, const char* why, const std::string& zero = "");
   double impact(State& s, const std::vector<int>& modes, size_t k);
   double tension_in(const std::vector<int>& modes, size_t k, const State& s);
   void start_segment(const State& s);
@@ -173,10 +184,10 @@ double Switcher::event(Mode& md, double t, const VectorXd& q0, const VectorXd& q
     if (s >= 0) {
       const double T = (*r)[md.tension[k]];
       t_ref_ = std::max(t_ref_, std::abs(T));
-      g = std::min(g, T / tension_ref() + kSpanTol);
-      if (watch_[k]) g = std::min(g, L.gap[1 - s] / rest(c, 1 - s) + kSpanTol);
+      g = std::min(g, tension_cond(T));
+      if (watch_[k]) g = std::min(g, length_cond(c, L, 1 - s));
     } else {
-      g = std::min({g, L.gap[0] / rest(c, 0) + kSpanTol, L.gap[1] / rest(c, 1) + kSpanTol});
+      g = std::min({g, length_cond(c, L, 0), length_cond(c, L, 1)});
     }
   }
   return g;
@@ -260,22 +271,7 @@ void Switcher::append(const Trajectory& r) {
   off_[kLoadWork] += r.load_work[e];
   off_[kConstraintWork] += r.constraint_work[e];
   off_[kDissipated] += r.dissipated[e];
-  RunStats& a = out_.stats;
-  const RunStats& b = r.stats;
-  a.cpu_seconds += b.cpu_seconds;
-  a.steps += b.steps;
-  a.rhs_evaluations += b.rhs_evaluations;
-  a.factorizations += b.factorizations;
-  a.projections += b.projections;
-  a.error_test_failures += b.error_test_failures;
-  a.solver_iterations += b.solver_iterations;
-  a.regularized_evaluations += b.regularized_evaluations;
-  a.stepped_over += b.stepped_over;
-  a.min_pivot_ratio = std::min(a.min_pivot_ratio, b.min_pivot_ratio);
-  a.max_drift = std::max(a.max_drift, b.max_drift);
-  a.sparse = a.sparse || b.sparse;
-  a.t_end = b.t_end;
-  for (const std::string& w : b.warnings) a.warnings.push_back(w);
+  add_leg_stats(out_.stats, r.stats);
 }
 
 // The tension of chain k's span in `modes` at s (its mode's least-squares multiplier).
@@ -308,15 +304,24 @@ double Switcher::impact(State& s, const std::vector<int>& modes, size_t k) {
 }
 
 // Chain k engages span `span` at s (an impact); true if it then pulls (else it stays slack).
-bool Switcher::engage(State& s, size_t k, int span, const char* why) {
+// `zero`: the line of the other span's tension reaching 0 (a handover), left out with the
+// engagement's line (the handover counted) if the span pulls and the energy lost is within rtol.
+bool Switcher::engage(State& s, size_t k, int span, const char* why, const std::string& zero) {
   const std::vector<int> modes = modes_with(k, span);
-  const double e0 = off_[kDissipated];
+  const double e0 = off_[kDissipated], ke = kinetic_energy(m_, s.q1);
   const double P = impact(s, modes, k);
   const double T = tension_in(modes, k, s);
-  note("chain '" + chain(k).name + "': the " + kSpanName[span] + " span " + why +
-       " at t = " + num(s.t) + " s: perfectly inelastic engagement, impulse " + num(P) +
-       " N s, kinetic energy lost " + num(off_[kDissipated] - e0) + " J; tension then " + num(T) +
-       " N" + (T >= -tension_tol() ? "" : " (< 0: it does not hold, the chain stays slack)"));
+  const double lost = off_[kDissipated] - e0;
+  if (!zero.empty() && T >= -tension_tol() && std::abs(lost) <= rel_tension_ * ke + 1e-12) {
+    log_.handover(k, 1 - span, s.t);
+    spans_[k] = span;
+    return true;
+  }
+  if (!zero.empty()) note(k, zero);
+  note(k, "chain '" + chain(k).name + "': the " + kSpanName[span] + " span " + why +
+              " at t = " + num(s.t) + " s: perfectly inelastic engagement, impulse " + num(P) +
+              " N s, kinetic energy lost " + num(lost) + " J; tension then " + num(T) + " N" +
+              (T >= -tension_tol() ? "" : " (< 0: it does not hold, the chain stays slack)"));
   if (T < -tension_tol()) return false;
   spans_[k] = span;
   return true;
@@ -341,9 +346,10 @@ void Switcher::start(State& s) {
       if (tension_in(modes, k, t) >= -tension_tol()) spans_[k] = 1, s = t;
     }
     if (spans_[k] < 0) slack_since_ = s.t;
-    note("chain '" + c.name + "': " +
-         (spans_[k] < 0 ? std::string("slack") : std::string(kSpanName[spans_[k]]) + " span taut") +
-         " at t = " + num(s.t) + " s (start)");
+    note(k, "chain '" + c.name + "': " +
+                (spans_[k] < 0 ? std::string("slack")
+                               : std::string(kSpanName[spans_[k]]) + " span taut") +
+                " at t = " + num(s.t) + " s (start)");
   }
 }
 
@@ -362,10 +368,10 @@ void Switcher::switch_at(State& s) {
       if (g < worst) worst = g, which = k, cause = why;
     };
     if (sp >= 0) {
-      consider(r[md.tension[k]] / tension_ref() + kSpanTol, 0);
-      if (watch_[k]) consider(L.gap[1 - sp] / rest(c, 1 - sp) + kSpanTol, 1);
+      consider(tension_cond(r[md.tension[k]]), 0);
+      if (watch_[k]) consider(length_cond(c, L, 1 - sp), 1);
     } else {
-      consider(std::min(L.gap[0] / rest(c, 0), L.gap[1] / rest(c, 1)) + kSpanTol, 2);
+      consider(std::min(length_cond(c, L, 0), length_cond(c, L, 1)), 2);
     }
   }
   const ChainLoad& c = chain(which);
@@ -386,18 +392,21 @@ void Switcher::switch_at(State& s) {
              " span switches: the switching chatters; use fidelity unilateral");
   if (cause == 1) both_taut(which, s.t);
   if (cause == 0) {
-    note("chain '" + c.name + "': the " + kSpanName[sp] +
-         " span's tension reaches 0 at t = " + num(s.t) + " s");
+    const std::string zero = "chain '" + c.name + "': the " + kSpanName[sp] +
+                             " span's tension reaches 0 at t = " + num(s.t) + " s";
     spans_[which] = -1;
     const Lengths L = lengths(m_, c, s.q0, s.q1, s.t);
-    if (L.gap[1 - sp] <= 10 * span_tol(c, 1 - sp) && engage(s, which, 1 - sp, "takes over")) return;
-    note("chain '" + c.name + "': slack from t = " + num(s.t) + " s");
+    const bool near = L.gap[1 - sp] <= 10 * span_tol(c, 1 - sp);
+    if (near && engage(s, which, 1 - sp, "takes over", zero)) return;
+    if (!near) note(which, zero);
+    note(which, "chain '" + c.name + "': slack from t = " + num(s.t) + " s");
     slack_since_ = s.t;
     return;
   }
   const Lengths L = lengths(m_, c, s.q0, s.q1, s.t);
   const int span = L.gap[0] <= L.gap[1] ? 0 : 1;
-  note("chain '" + c.name + "': slack interval " + num(slack_since_) + " to " + num(s.t) + " s");
+  note(which,
+       "chain '" + c.name + "': slack interval " + num(slack_since_) + " to " + num(s.t) + " s");
   engage(s, which, span, "reaches its rest length");
 }
 
@@ -446,6 +455,9 @@ Trajectory Switcher::run(const State& initial) {
     s.q1 = r.q1.row(e).transpose();
     if (r.stats.stopped_by_event) switch_at(s);
   }
+  std::vector<std::string> names;
+  for (size_t k = 0; k < chains_.size(); ++k) names.push_back(chain(k).name);
+  for (const std::string& w : log_.summary(names)) out_.stats.warnings.push_back(w);
   return std::move(out_);
 }
 

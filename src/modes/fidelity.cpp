@@ -87,13 +87,17 @@ VectorXd rate_gradient(const Model& m, const Quantity& rate, const VectorXd& q0)
 }
 
 std::string verdict(const CompliantElement& c, const RunTimeScale& s) {
+  if (c.reduced && c.omega == 0) return "reduced (" + c.reduction + "): rigid, no mode";
   if (c.omega == 0) return "no stiffness at this configuration";
-  if (std::isinf(c.inertia)) return "cannot move (its length is held by the constraints)";
+  if (std::isinf(c.inertia))
+    return std::string(c.reduced ? "reduced (" + c.reduction + "); " : "") +
+           "cannot move (its length is held by the constraints)";
   if (c.inertia == 0) return "no inertia along it: a massless, infinitely fast mode";
   char buf[200];
   const double rel = c.omega * s.output_interval / std::numbers::pi;  // omega / omega_out
   if (c.reduced)
-    std::snprintf(buf, sizeof buf, "reduced: its mode is removed (error ~ %.1e)", c.error_output);
+    std::snprintf(buf, sizeof buf, "reduced (%s): its mode is removed (error ~ %.1e)",
+                  c.reduction.c_str(), c.error_output);
   else if (rel > 10)
     std::snprintf(buf, sizeof buf,
                   "faster than the outputs resolve: reduce: constraint, or reduce: "
@@ -183,6 +187,8 @@ CompliantElement torsional_element(const Model& m, const TorsionalLoad& l, const
 // A chain's two spans (docs/reduction.md, "Chain and belt drives"): each span's material length
 // has a rate linear in q1, dl/dt = t . (v_b - v_a) +- (r_a w_a - r_b w_b), and the stiffness k
 // (a unilateral span only while it is taut).
+// An inextensible or quasi-steady chain (reduced: `a` frees its taut span's row) reports the
+// stiffness it was given (0: none) and its fidelity.
 void add_chain_spans(const Model& m, const ChainLoad& c, const Allowed& a, const VectorXd& q0,
                      double t, std::vector<CompliantElement>& out) {
   VectorXd gu(m.n1), gl(m.n1), e = VectorXd::Zero(m.n1);
@@ -197,6 +203,11 @@ void add_chain_spans(const Model& m, const ChainLoad& c, const Allowed& a, const
     CompliantElement el;
     el.name = c.name + (span == 0 ? ".upper" : ".lower");
     el.kind = c.fidelity == ChainFidelity::unilateral ? "chain span (taut)" : "chain span";
+    if (c.fidelity == ChainFidelity::inextensible) {  // a quasi-steady chain compiles as one
+      el.reduced = true;
+      el.reduction = c.held[0] ? "fidelity: quasi_steady" : "fidelity: inextensible";
+      el.kind = c.active_span == span ? "chain span (taut)" : "chain span";
+    }
     el.stiffness = c.stiffness;
     el.damping = c.damping;
     el.inertia = reflected_inertia(a, span == 0 ? gu : gl);
@@ -229,10 +240,21 @@ std::vector<CompliantElement> fidelity_report(const Model& m, const VectorXd& q0
     const Allowed fa = allowed_motion(m, q0, t, m.constraints[r.constraint].row1);
     CompliantElement c = spring_element(m, r.spring, fa, q0, q1, t);
     c.reduced = true;
+    c.reduction = r.held_length ? "reduce: quasi_steady" : "reduce: constraint";
     out.push_back(std::move(c));
   }
-  for (const ChainLoad& c : m.chains)  // an inextensible chain is already reduced: its row holds
-    if (c.fidelity != ChainFidelity::inextensible) add_chain_spans(m, c, a, q0, t, out);
+  for (const ReducedTorsional& r : m.reduced_torsional) {  // its own mode: its angle freed
+    const Allowed fa = allowed_motion(m, q0, t, m.constraints[r.constraint].row1);
+    CompliantElement c = torsional_element(m, r.spring, fa, q0, q1, t);
+    c.reduced = true;
+    c.reduction = r.held_angle ? "reduce: quasi_steady" : "reduce: constraint";
+    out.push_back(std::move(c));
+  }
+  for (const ChainLoad& c : m.chains) {  // a reduced chain's mode: its taut span's row freed
+    const bool row = c.constraint >= 0 && m.constraints[c.constraint].nrow1 > 0;
+    add_chain_spans(m, c, row ? allowed_motion(m, q0, t, m.constraints[c.constraint].row1) : a, q0,
+                    t, out);
+  }
   for (CompliantElement& c : out) {
     complete(c, scale);
     if (c.kind.starts_with("chain")) chain_verdict(c);

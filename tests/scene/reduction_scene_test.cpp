@@ -236,5 +236,72 @@ TEST(FidelityReport, StiffAndSoftSprings) {
   std::printf("%s", describe_fidelity(rep, scale).c_str());
 }
 
+// mechanisms/half_bike.yaml's report, its suspension (a torsional spring with a law) reduced by
+// `reduce` ("" none) and its chain at `fidelity`.
+std::vector<CompliantElement> half_bike_fidelity(const std::string& reduce,
+                                                 const std::string& fidelity) {
+  std::ifstream in(std::string(MO2D_MECHANISMS_DIR) + "/half_bike.yaml");
+  std::stringstream text;
+  text << in.rdbuf();
+  std::string s = text.str();
+  const std::string susp = "tau_pre}\n", chain = "fidelity: unilateral,";
+  const std::string v = "velocities: {shaft.w: 0, arm.w: 0, wheel.w: 0}";
+  if (s.find(susp) == std::string::npos || s.find(chain) == std::string::npos ||
+      s.find(v) == std::string::npos)
+    return {};
+  if (!reduce.empty()) s.replace(s.find(susp), susp.size(), "tau_pre, reduce: " + reduce + "}\n");
+  s.replace(s.find(chain), chain.size(), "fidelity: " + fidelity + ",");
+  if (fidelity != "unilateral") s.replace(s.find(v), v.size(), "velocities: {shaft.w: 0}");
+  const std::vector<ParameterOverride> no_slack = {{"slack", "0"}};  // the same assembly
+  const Model m = build_scene_model(parse_scene(s, "half_bike.yaml", no_slack));
+  return fidelity_report(m, m.q0, Eigen::VectorXd::Zero(m.n1), 0, {15, 0.01, 0});
+}
+
+const CompliantElement* element_named(const std::vector<CompliantElement>& rep,
+                                      const std::string& name) {
+  for (const CompliantElement& c : rep)
+    if (c.name == name) return &c;
+  return nullptr;
+}
+
+// Every compliant element is listed with its current fidelity: the reduced suspension (reduce:
+// constraint or quasi_steady) and the reduced chain (fidelity: inextensible or quasi_steady),
+// each with the stiffness, inertia and frequency of its own mode. Reduced alone (the other
+// element as in the full model), that is the mode the full model (the suspension a load, the
+// chain unilateral) reports for it: the reduced model frees the element's own row, the full
+// model has none. (Both reduced, each sees the other's row: its inertia is 9e-4 larger.)
+// Without the scene's slack the initial configurations are the same.
+TEST(FidelityReport, ListsReducedTorsionalSpringsAndChainsWithTheirFidelity) {
+  const std::vector<CompliantElement> full = half_bike_fidelity("", "unilateral");
+  ASSERT_FALSE(full.empty());
+  for (const auto& [reduce, fidelity] :
+       {std::pair<std::string, std::string>{"constraint", "inextensible"},
+        {"quasi_steady", "quasi_steady"}}) {
+    const std::vector<CompliantElement> both = half_bike_fidelity(reduce, fidelity);
+    EXPECT_EQ(both.size(), full.size());
+    for (const std::string name : {"suspension", "chain.upper", "chain.lower"}) {
+      SCOPED_TRACE(name + " " + reduce);
+      const bool susp = name == "suspension";
+      const std::vector<CompliantElement> alone =
+          susp ? half_bike_fidelity(reduce, "unilateral") : half_bike_fidelity("", fidelity);
+      const CompliantElement* a = element_named(full, name);
+      const CompliantElement* b = element_named(alone, name);
+      const CompliantElement* c = element_named(both, name);
+      ASSERT_TRUE(a && b && c);
+      EXPECT_FALSE(a->reduced);
+      EXPECT_TRUE(b->reduced && c->reduced);
+      const std::string how = susp ? "reduce: " + reduce : "fidelity: " + fidelity;
+      EXPECT_EQ(c->reduction, how);
+      EXPECT_NE(c->verdict.find("reduced (" + how + ")"), std::string::npos) << c->verdict;
+      EXPECT_EQ(b->stiffness, a->stiffness);
+      EXPECT_NEAR(b->inertia, a->inertia, 1e-9 * a->inertia);
+      EXPECT_NEAR(b->omega, a->omega, 1e-9 * a->omega);
+      EXPECT_GT(c->omega, 10);
+      std::printf("%-12s %-24s inertia %.9g (full %.9g; both reduced %.6g), omega %.6g rad/s\n",
+                  name.c_str(), how.c_str(), b->inertia, a->inertia, c->inertia, b->omega);
+    }
+  }
+}
+
 }  // namespace
 }  // namespace mo2d
