@@ -142,7 +142,9 @@ class RkDriver {
         q0_(m.n0),
         q1_(m.n1),
         y_stage_(n_),
-        err_(n_) {
+        err_(n_),
+        y_half_(n_),
+        y_two_(n_) {
     for (auto& k : k_) k.resize(n_);
     k_start_.resize(n_);
     k_next_.resize(n_);
@@ -224,6 +226,7 @@ class RkDriver {
   bool have_start_ = false;
   bool project_stages_ = false;
   VectorXd q0_, q1_, y_stage_, err_;
+  VectorXd y_half_, y_two_;  // step doubling (step_through)
 
   void split(const VectorXd& y) {
     q0_ = y.head(m_.n0);
@@ -307,14 +310,8 @@ class RkDriver {
           hh = std::min(h_first * kRetry[retry++], t_limit - t);
           continue;
         }
-        // could not avoid it: accept the regularized accelerations, and say so
-        double e2 = 0;
-        d_.accel_ok = true;
-        step(t, y, hh, y_new, e2, false);
-        have_start_ = false;
-        if (d_.stats.warnings.size() < 20)
-          d_.stats.warnings.push_back("could not step over a singular configuration near t = " +
-                                      fmt(t) + " s; regularized accelerations used");
+        // could not avoid it: the longest try with the regularized accelerations, error-tested
+        step_through(t, y, hh, h_first * *std::min_element(kRetry.begin(), kRetry.end()), y_new);
         used = hh;
         return;
       }
@@ -352,6 +349,47 @@ class RkDriver {
                         " s (error test)",
                     m_.name, t);
     }
+  }
+
+  // Every retry length put a stage where the accelerations are regularized and not accurate
+  // (a slow passage, or one longer than the longest retry): the longest try, hh, is taken with
+  // them, but only if its error estimate passes the test of a step that stepped over (<= 10
+  // tolerances, advance): the embedded pair's estimate, or for a fixed-step method step doubling
+  // (the whole step against two halves, Richardson: their difference / (2^p - 1)), both on the
+  // run's rtol and atol. A step that fails is an error naming the time and the variable: its
+  // accelerations may have taken the mechanism off its branch. h_min: the shortest try.
+  void step_through(double t, const VectorXd& y, double hh, double h_min, VectorXd& y_new) {
+    d_.accel_ok = true;
+    double err = 0;
+    step(t, y, hh, y_new, err, false);
+    if (!tab_.embedded) {  // err_ = (y_new - the two half steps) / (2^p - 1)
+      step(t, y, hh / 2, y_half_, err, false);
+      step(t + hh / 2, y_half_, hh / 2, y_two_, err, false);
+      err_ = (y_new - y_two_) / (std::pow(2.0, tab_.order) - 1);
+    }
+    have_start_ = false;
+    int worst = 0;
+    err = 0;
+    for (int j = 0; j < m_.n0 + m_.n1; ++j) {
+      const double scale = o_.atol + o_.rtol * std::max(std::abs(y[j]), std::abs(y_new[j]));
+      const double e = std::abs(err_[j]) / scale;
+      if (!(e <= err)) err = e, worst = j;
+    }
+    const std::string& var =
+        worst < m_.n0 ? m_.coordinate_labels[worst] : m_.rate_labels[worst - m_.n0];
+    const std::string what = "could not step over a singular configuration near t = " + fmt(t) +
+                             " s (every step from " + fmt(h_min) + " to " + fmt(hh) +
+                             " s evaluates a stage where the accelerations are regularized); ";
+    const std::string estimate = "error estimate of the " + fmt(hh) + " s step " + fmt(err) +
+                                 " times rtol/atol, largest in '" + var + "'";
+    if (!(err <= 10))
+      throw Error("forward dynamics of '" + m_.name + "': " + what + estimate +
+                      ": the mechanism may have left its branch (" +
+                      (tab_.embedded ? "try other tolerances, or cvode_bdf" : "try another step") +
+                      ")",
+                  var, t);
+    if (d_.stats.warnings.size() < 20)
+      d_.stats.warnings.push_back(what + "regularized accelerations used, " + estimate);
   }
 
   // State at an output time t_s inside the accepted step (t, y) -> (t1, y1), recorded. First
