@@ -28,6 +28,7 @@ PatternLU::PatternLU(int n, double dense_below)
        {&src_, &dst_, &row_, &col_, &fill_, &l_row_, &l_idx_, &u_col_, &uc_row_, &uc_idx_})
     v->reserve(nn);
   for (auto* v : {&l_start_, &u_start_, &uc_start_}) v->reserve(n + 1);
+  swapped_.reserve(n);
 }
 
 double PatternLU::compute(const Eigen::Ref<const Eigen::MatrixXd>& A) {
@@ -134,8 +135,7 @@ void PatternLU::solve_in_place(Eigen::Ref<Eigen::VectorXd> xv) const {
   double* x = xv.data();
   const int *ls = l_start_.data(), *lr = l_row_.data(), *li = l_idx_.data();
   const int *us = uc_start_.data(), *ur = uc_row_.data(), *ui = uc_idx_.data();
-  for (int k = 0; k < n; ++k)
-    if (swap_[k] != k) std::swap(x[k], x[swap_[k]]);
+  for (const int k : swapped_) std::swap(x[k], x[swap_[k]]);
   for (int j = 0; j < n; ++j) {  // L y = P b (unit lower)
     const double xj = x[j];
     if (xj != 0)
@@ -166,8 +166,7 @@ void PatternLU::solve_transpose_in_place(Eigen::Ref<Eigen::VectorXd> xv) const {
     for (int p = ls[j]; p < ls[j + 1]; ++p) s -= a[li[p]] * x[lr[p]];
     x[j] = s;
   }
-  for (int k = n - 1; k >= 0; --k)
-    if (swap_[k] != k) std::swap(x[k], x[swap_[k]]);
+  for (auto k = swapped_.rbegin(); k != swapped_.rend(); ++k) std::swap(x[*k], x[swap_[*k]]);
 }
 
 // The pivot order of the dense factorization just computed (dense_), the pattern of A (grown by
@@ -178,8 +177,10 @@ void PatternLU::analyse(const Eigen::Ref<const Eigen::MatrixXd>& A) {
   swap_ = dense_.transpositions();
   perm_sign_ = 1;
   for (int k = 0; k < n; ++k) row_at_[k] = k;
+  swapped_.clear();
   for (int k = 0; k < n; ++k)
-    if (swap_[k] != k) std::swap(row_at_[k], row_at_[swap_[k]]), perm_sign_ = -perm_sign_;
+    if (swap_[k] != k)
+      std::swap(row_at_[k], row_at_[swap_[k]]), perm_sign_ = -perm_sign_, swapped_.push_back(k);
   for (int k = 0; k < n; ++k) pos_[row_at_[k]] = k;
   std::fill(lu_pattern_.begin(), lu_pattern_.end(), 0);
   src_.clear(), dst_.clear(), row_.clear(), col_.clear();

@@ -61,6 +61,7 @@ class PatternLU {
   std::vector<char> lu_pattern_;                 // pattern of L + U (rows in pivot order)
   std::vector<int> row_at_, pos_;                // pivot position -> row of A, and back
   std::vector<int> swap_;                        // row transpositions (as SmallLU's)
+  std::vector<int> swapped_;                     // the k with swap_[k] != k, in order
   std::vector<int> src_, dst_, row_, col_;       // A's entries: index in A, in w_, row, column
   std::vector<int> fill_;                        // index in w_ of the fill entries (reset to 0)
   std::vector<int> l_start_, l_row_, l_idx_;     // column k of L: rows, index in w_
