@@ -402,10 +402,10 @@ void inverse_efforts_and_reactions(const Model& m, InverseData& d) {
   d.w.setZero();
   if (!m.frictions.empty()) detail::add_friction_forces(m, d.friction, -1.0, true, d.local_a, d.w);
   scatter_local(m, d.local_a, d.w);
-  d.Ctw.noalias() = d.S.transpose() * d.w;
+  d.Ctw.noalias() = d.S.transpose().lazyProduct(d.w);
   d.u = d.lu_u.solve(d.Ctw);
   // multipliers: K^T [lambda; mu] = B u - (M a - f), with mu = 0 for an exact solution
-  d.rhs.noalias() = d.B * d.u;
+  d.rhs.noalias() = d.B.lazyProduct(d.u);
   d.rhs -= d.w;
   d.z = d.rhs;  // K^-T = R Ks^-T D
   d.z.array() *= d.col_scale.array();

@@ -2,7 +2,6 @@
 #include "linalg/pattern_lu.hpp"
 
 #include <cmath>
-#include <cstring>
 #include <utility>
 
 namespace mo2d::detail {
@@ -17,7 +16,7 @@ const Eigen::VectorXd& no_scaling() {
 }  // namespace
 
 PatternLU::PatternLU(int n, double dense_below)
-    : n_(n), dense_below_(dense_below), dense_(n), scaled_(n, n), w_(n, n) {
+    : n_(n), dense_below_(dense_below), dense_(n), scaled_(n, n), w_(n, n), outside_mask_(n, n) {
   const size_t nn = static_cast<size_t>(n) * n;
   outside_.assign(nn, ~uint64_t{0});
   lu_pattern_.assign(nn, 0);
@@ -29,6 +28,7 @@ PatternLU::PatternLU(int n, double dense_below)
        {&src_, &dst_, &row_, &col_, &fill_, &l_row_, &l_idx_, &u_col_, &uc_row_, &uc_idx_})
     v->reserve(nn);
   for (auto* v : {&l_start_, &u_start_, &uc_start_}) v->reserve(n + 1);
+  swapped_.reserve(n);
 }
 
 double PatternLU::compute(const Eigen::Ref<const Eigen::MatrixXd>& A) {
@@ -73,26 +73,19 @@ double PatternLU::compute_scaled(const Eigen::Ref<const Eigen::MatrixXd>& A,
 }
 
 bool PatternLU::outside_pattern(const Eigen::Ref<const Eigen::MatrixXd>& A) const {
-  // the bits of the entries outside the pattern, or-ed (vectorizes; A is contiguous here)
-  uint64_t acc0 = 0, acc1 = 0;
-  const auto stride = static_cast<ptrdiff_t>(A.outerStride());
-  for (int j = 0; j < n_; ++j) {
-    const double* col = A.data() + j * stride;
-    const uint64_t* mask = outside_.data() + static_cast<ptrdiff_t>(j) * n_;
-    int i = 0;
-    for (; i + 1 < n_; i += 2) {
-      uint64_t b[2];
-      std::memcpy(b, col + i, sizeof b);
-      acc0 |= b[0] & mask[i];
-      acc1 |= b[1] & mask[i + 1];
-    }
-    if (i < n_) {
-      uint64_t b = 0;
-      std::memcpy(&b, col + i, sizeof b);
-      acc0 |= b & mask[i];
-    }
+  // sum |a_ij| over the entries outside the pattern (mask 1 there, 0 inside; a vectorized
+  // product): 0 unless one is nonzero, non-finite if one is not finite (or one inside is
+  // infinite: then the dense path, which reports it)
+  double sum = 0;
+  if (A.outerStride() == n_) {
+    const auto nn = static_cast<Eigen::Index>(n_) * n_;
+    sum = (Eigen::Map<const Eigen::ArrayXd>(A.data(), nn).abs() *
+           Eigen::Map<const Eigen::ArrayXd>(outside_mask_.data(), nn))
+              .sum();
+  } else {
+    sum = (A.array().abs() * outside_mask_.array()).sum();
   }
-  return ((acc0 | acc1) << 1) != 0;  // any bit but the sign: a nonzero (or non-finite) entry
+  return !(sum == 0);
 }
 
 bool PatternLU::refactor() {
@@ -142,8 +135,7 @@ void PatternLU::solve_in_place(Eigen::Ref<Eigen::VectorXd> xv) const {
   double* x = xv.data();
   const int *ls = l_start_.data(), *lr = l_row_.data(), *li = l_idx_.data();
   const int *us = uc_start_.data(), *ur = uc_row_.data(), *ui = uc_idx_.data();
-  for (int k = 0; k < n; ++k)
-    if (swap_[k] != k) std::swap(x[k], x[swap_[k]]);
+  for (const int k : swapped_) std::swap(x[k], x[swap_[k]]);
   for (int j = 0; j < n; ++j) {  // L y = P b (unit lower)
     const double xj = x[j];
     if (xj != 0)
@@ -174,8 +166,7 @@ void PatternLU::solve_transpose_in_place(Eigen::Ref<Eigen::VectorXd> xv) const {
     for (int p = ls[j]; p < ls[j + 1]; ++p) s -= a[li[p]] * x[lr[p]];
     x[j] = s;
   }
-  for (int k = n - 1; k >= 0; --k)
-    if (swap_[k] != k) std::swap(x[k], x[swap_[k]]);
+  for (auto k = swapped_.rbegin(); k != swapped_.rend(); ++k) std::swap(x[*k], x[swap_[*k]]);
 }
 
 // The pivot order of the dense factorization just computed (dense_), the pattern of A (grown by
@@ -186,8 +177,10 @@ void PatternLU::analyse(const Eigen::Ref<const Eigen::MatrixXd>& A) {
   swap_ = dense_.transpositions();
   perm_sign_ = 1;
   for (int k = 0; k < n; ++k) row_at_[k] = k;
+  swapped_.clear();
   for (int k = 0; k < n; ++k)
-    if (swap_[k] != k) std::swap(row_at_[k], row_at_[swap_[k]]), perm_sign_ = -perm_sign_;
+    if (swap_[k] != k)
+      std::swap(row_at_[k], row_at_[swap_[k]]), perm_sign_ = -perm_sign_, swapped_.push_back(k);
   for (int k = 0; k < n; ++k) pos_[row_at_[k]] = k;
   std::fill(lu_pattern_.begin(), lu_pattern_.end(), 0);
   src_.clear(), dst_.clear(), row_.clear(), col_.clear();
@@ -229,6 +222,7 @@ void PatternLU::analyse(const Eigen::Ref<const Eigen::MatrixXd>& A) {
   l_start_.push_back(static_cast<int>(l_row_.size()));
   u_start_.push_back(static_cast<int>(u_col_.size()));
   uc_start_.push_back(static_cast<int>(uc_row_.size()));
+  for (int k = 0; k < n * n; ++k) outside_mask_.data()[k] = outside_[k] != 0 ? 1.0 : 0.0;
   w_.setZero();
   analysed_ = true;
 }

@@ -57,9 +57,11 @@ class PatternLU {
   Eigen::MatrixXd scaled_;                       // the scaled matrix (dense path)
   Eigen::MatrixXd w_;                            // L and U in place (zero outside their pattern)
   std::vector<uint64_t> outside_;                // all ones where A's pattern has no entry
+  Eigen::MatrixXd outside_mask_;                 // 1 there, 0 on the pattern (outside_pattern)
   std::vector<char> lu_pattern_;                 // pattern of L + U (rows in pivot order)
   std::vector<int> row_at_, pos_;                // pivot position -> row of A, and back
   std::vector<int> swap_;                        // row transpositions (as SmallLU's)
+  std::vector<int> swapped_;                     // the k with swap_[k] != k, in order
   std::vector<int> src_, dst_, row_, col_;       // A's entries: index in A, in w_, row, column
   std::vector<int> fill_;                        // index in w_ of the fill entries (reset to 0)
   std::vector<int> l_start_, l_row_, l_idx_;     // column k of L: rows, index in w_
