@@ -23,7 +23,10 @@
 // errors naming the chain and the time. The recorded samples are the output grid's; the
 // integrated energy terms carry over from segment to segment. A quasi-steady chain (ChainLoad::
 // held) switches alike, its taut span at rest + T / k (mo2d/quasi_steady.hpp): the run holds the
-// quasi-steady cells across its legs (QuasiSteadyRun with legs) and resets them at its end.
+// quasi-steady cells across its legs (QuasiSteadyRun with legs) and resets them at its end. Its
+// taut span whose tension reaches 0 is released to its rest length before the handover
+// (release): where the tension jumps through 0 with the loads (a torque step) the located state
+// holds it at rest + T / k with T < 0.
 #include <Eigen/LU>
 #include <algorithm>
 #include <chrono>
@@ -45,6 +48,11 @@ constexpr double kSpanTol = 1e-9;    // relative to the rest length
 constexpr int kChatter = 8;          // switches at one instant before the run is refused
 constexpr int kMaxSwitches = 10000;  // switches in a run before it is refused
 const char* const kSpanName[2] = {"upper", "lower"};
+
+// The fidelity a chain was given (a quasi-steady chain is compiled as inextensible, with cells).
+const char* fidelity_name(const ChainLoad& c) {
+  return c.held[0] ? "quasi_steady" : "inextensible";
+}
 
 // Times, impulses and energies of the switch lines: 10 significant digits (a switch time is
 // compared with closed forms to 1e-7 s).
@@ -143,6 +151,7 @@ class Switcher {
   void switch_at(State& s);
   bool engage(State& s, size_t k, int span, const char* why);
   double impact(State& s, const std::vector<int>& modes, size_t k);
+  void release(State& s, size_t k, double T);
   double tension_in(const std::vector<int>& modes, size_t k, const State& s);
   void start_segment(const State& s);
   void check_both_taut(const Model& mm, const Trajectory& r);
@@ -151,13 +160,14 @@ class Switcher {
     fail(k, t,
          std::string("both spans taut (the ") + kSpanName[1 - sp] +
              " span reaches its rest length while the " + kSpanName[sp] +
-             " span pulls: the centre distance would be locked); the inextensible model holds "
-             "one span at a time: use fidelity unilateral or a longer rest length");
+             " span pulls: the centre distance would be locked); fidelity " +
+             fidelity_name(chain(k)) +
+             " holds one span at a time: use fidelity unilateral or a longer rest length");
   }
   [[noreturn]] void fail(size_t k, double t, const std::string& what) const {
-    throw Error(
-        "chain '" + chain(k).name + "' (inextensible): " + what + " at t = " + fmt(t) + " s",
-        chain(k).name, t);
+    throw Error("chain '" + chain(k).name + "' (" + fidelity_name(chain(k)) + "): " + what +
+                    " at t = " + fmt(t) + " s",
+                chain(k).name, t);
   }
 };
 
@@ -197,7 +207,13 @@ void Switcher::check_both_taut(const Model& mm, const Trajectory& r) {
   for (size_t k = 0; k < chains_.size(); ++k) {
     const int sp = spans_[k];
     if (sp < 0 || watch_[k]) continue;
+    // a quasi-steady span past a jump of its tension through 0 (the located event, an output
+    // time at it) is held at rest + T / k with T < 0, the other span longer by -T / k: release()
+    // puts it back
+    const int T =
+        chain(k).held[sp] ? r.reaction(chain(k).name + "." + kSpanName[sp] + ".tension") : -1;
     for (Eigen::Index i = 0; i < r.time.size(); ++i) {
+      if (T >= 0 && r.reactions(i, T) < 0) continue;
       const Lengths L =
           lengths(mm, chain(k), r.q0.row(i).transpose(), r.q1.row(i).transpose(), r.time[i]);
       if (L.gap[1 - sp] < -1e-6 * rest(chain(k), 1 - sp)) both_taut(k, r.time[i]);
@@ -307,6 +323,27 @@ double Switcher::impact(State& s, const std::vector<int>& modes, size_t k) {
   return x[n + mm.constraints[mm.chains[chains_[k]].constraint].row1];
 }
 
+// Quasi-steady chain k's taut span, its tension T at the located state s, released to its rest
+// length: the held length at T = 0. Where T falls to 0 smoothly the span is there already (to
+// the event's tolerance); where it jumps through 0 with the loads the located state (past the jump)
+// holds it at rest + T / k with T < 0, and every cell's rate is the secant over the jump. The
+// cells are held still (rate 0: the thesis's z2 = 0 at the instant), the span's at rest, and the
+// state put on the rows like an engagement (kinetic energy lost to the dissipated energy).
+void Switcher::release(State& s, size_t k, double T) {
+  const ChainLoad& c = chain(k);
+  const int sp = spans_[k];
+  hold_still(m_, s.t);
+  HeldLength& h = held_of(c, sp);
+  const double stretch = h.length - rest(c, sp);
+  h.length = h.prev_length = rest(c, sp);
+  const double e0 = off_[kDissipated];
+  const double P = impact(s, spans_, k);
+  note("chain '" + c.name + "' (quasi_steady): the " + kSpanName[sp] + " span released from rest " +
+       (stretch < 0 ? "- " : "+ ") + num(std::abs(stretch)) + " m (tension " + num(T) +
+       " N) to its rest length at t = " + num(s.t) + " s: impulse " + num(P) +
+       " N s, kinetic energy lost " + num(off_[kDissipated] - e0) + " J");
+}
+
 // Chain k engages span `span` at s (an impact); true if it then pulls (else it stays slack).
 bool Switcher::engage(State& s, size_t k, int span, const char* why) {
   const std::vector<int> modes = modes_with(k, span);
@@ -351,6 +388,7 @@ void Switcher::start(State& s) {
 void Switcher::switch_at(State& s) {
   Mode md(chain_mode_model(m_, spans_), inner_);
   const VectorXd r = md.reactions(s.t, s.q0, s.q1);
+  if (has_quasi_steady(m_)) hold_still(m_, s.t);  // the held values jump with the mode
   size_t which = 0;
   double worst = 1e300;
   int cause = 0;  // 0 the taut span's tension, 1 the other span's length, 2 a slack span's length
@@ -374,8 +412,8 @@ void Switcher::switch_at(State& s) {
     if (++same_instant_ > kChatter)
       fail(which, s.t,
            "the span switching chatters (" + std::to_string(same_instant_) +
-               " switches at one instant): the mechanism cannot be handled by the inextensible "
-               "model; use fidelity unilateral");
+               " switches at one instant): the mechanism cannot be handled by fidelity " +
+               fidelity_name(c) + "; use fidelity unilateral");
   } else {
     same_instant_ = 0;
   }
@@ -388,6 +426,7 @@ void Switcher::switch_at(State& s) {
   if (cause == 0) {
     note("chain '" + c.name + "': the " + kSpanName[sp] +
          " span's tension reaches 0 at t = " + num(s.t) + " s");
+    if (c.held[sp]) release(s, which, r[md.tension[which]]);
     spans_[which] = -1;
     const Lengths L = lengths(m_, c, s.q0, s.q1, s.t);
     if (L.gap[1 - sp] <= 10 * span_tol(c, 1 - sp) && engage(s, which, 1 - sp, "takes over")) return;
@@ -461,7 +500,7 @@ Trajectory forward_chain_switching(const Model& m, const State& initial, const F
   for (const ChainLoad& c : m.chains)
     if (c.fidelity == ChainFidelity::inextensible &&
         (o.integrator == Integrator::cvode_adams || o.integrator == Integrator::baumgarte))
-      throw Error("chain '" + c.name + "' (inextensible): the integrator " +
+      throw Error("chain '" + c.name + "' (" + fidelity_name(c) + "): the integrator " +
                       to_string(o.integrator) +
                       " does not project on the constraints, and the span's length must be held "
                       "there: use cvode_bdf, dopri5, erk6, erk8 or rk4",
