@@ -467,15 +467,16 @@ class RkDriver {
       if (std::abs(hi - lo) < 1e-13 * std::max(1.0, std::abs(t)) || g == 0) break;
       bisect = hi - lo > 0.5 * width;
     }
-    held_start_.swap(held_from);
     d_.stats.stopped_by_event = true;
     d_.stats.t_end = t_best;
-    // output times the step passed before the event (a free step of an embedded pair)
+    // output times the step passed before the event (a free step of an embedded pair; their
+    // cells without a rate too: one may be past the jump, e.g. an output time on a torque step)
     for (; k < o_.samples; ++k) {
       const double t_out = o_.t0 + (o_.t1 - o_.t0) * k / (o_.samples - 1);
       if (!(t_out < t_best)) break;
       record_interpolated(rec, t, y, t_best, y_best, t_out);
     }
+    held_start_.swap(held_from);
     if (held_) restore_held(m_, held_best);  // the run goes on from the located state
     record(rec, t_best, y_best);
   }
