@@ -110,6 +110,11 @@ void restore_held(const Model& m, const HeldValues& v);
 // mode, and a secant over the jump, or from the event to the next leg's start, which is moved onto
 // the output grid by up to 1e-9 of its spacing, is meaningless).
 void hold_still(const Model& m, double t);
+// A quasi-steady chain's taut span (its cells held still by the switching) released to its rest
+// length (the held length at T = 0) when its tension reaches 0: where T jumps through 0 with the
+// loads the located state past the jump holds it at rest + T / k with T < 0. Returns the length
+// it held beyond its rest length (m); the caller puts the state on the row (an engagement).
+double release_span(const ChainLoad& c, int span, double rest);
 
 // Project (q0, q1) on the constraints with the quasi-steady lengths settled at t (above).
 // Throws Error naming the spring if the fixed point does not converge in 30 passes.

@@ -23,10 +23,8 @@
 // errors naming the chain and the time. The recorded samples are the output grid's; the
 // integrated energy terms carry over from segment to segment. A quasi-steady chain (ChainLoad::
 // held) switches alike, its taut span at rest + T / k (mo2d/quasi_steady.hpp): the run holds the
-// quasi-steady cells across its legs (QuasiSteadyRun with legs) and resets them at its end. Its
-// taut span whose tension reaches 0 is released to its rest length before the handover
-// (release): where the tension jumps through 0 with the loads (a torque step) the located state
-// holds it at rest + T / k with T < 0.
+// quasi-steady cells across its legs (QuasiSteadyRun with legs) and resets them at its end; its
+// span whose tension reaches 0 is put at its rest length first (release_span; docs/reduction.md).
 #include <Eigen/LU>
 #include <algorithm>
 #include <chrono>
@@ -151,7 +149,6 @@ class Switcher {
   void switch_at(State& s);
   bool engage(State& s, size_t k, int span, const char* why);
   double impact(State& s, const std::vector<int>& modes, size_t k);
-  void release(State& s, size_t k, double T);
   double tension_in(const std::vector<int>& modes, size_t k, const State& s);
   void start_segment(const State& s);
   void check_both_taut(const Model& mm, const Trajectory& r);
@@ -207,9 +204,8 @@ void Switcher::check_both_taut(const Model& mm, const Trajectory& r) {
   for (size_t k = 0; k < chains_.size(); ++k) {
     const int sp = spans_[k];
     if (sp < 0 || watch_[k]) continue;
-    // a quasi-steady span past a jump of its tension through 0 (the located event, an output
-    // time at it) is held at rest + T / k with T < 0, the other span longer by -T / k: release()
-    // puts it back
+    // a quasi-steady span past a jump of its tension through 0 is at rest + T / k, T < 0 (the
+    // other span longer by -T / k) until released
     const int T =
         chain(k).held[sp] ? r.reaction(chain(k).name + "." + kSpanName[sp] + ".tension") : -1;
     for (Eigen::Index i = 0; i < r.time.size(); ++i) {
@@ -323,27 +319,6 @@ double Switcher::impact(State& s, const std::vector<int>& modes, size_t k) {
   return x[n + mm.constraints[mm.chains[chains_[k]].constraint].row1];
 }
 
-// Quasi-steady chain k's taut span, its tension T at the located state s, released to its rest
-// length: the held length at T = 0. Where T falls to 0 smoothly the span is there already (to
-// the event's tolerance); where it jumps through 0 with the loads the located state (past the jump)
-// holds it at rest + T / k with T < 0, and every cell's rate is the secant over the jump. The
-// cells are held still (rate 0: the thesis's z2 = 0 at the instant), the span's at rest, and the
-// state put on the rows like an engagement (kinetic energy lost to the dissipated energy).
-void Switcher::release(State& s, size_t k, double T) {
-  const ChainLoad& c = chain(k);
-  const int sp = spans_[k];
-  hold_still(m_, s.t);
-  HeldLength& h = held_of(c, sp);
-  const double stretch = h.length - rest(c, sp);
-  h.length = h.prev_length = rest(c, sp);
-  const double e0 = off_[kDissipated];
-  const double P = impact(s, spans_, k);
-  note("chain '" + c.name + "' (quasi_steady): the " + kSpanName[sp] + " span released from rest " +
-       (stretch < 0 ? "- " : "+ ") + num(std::abs(stretch)) + " m (tension " + num(T) +
-       " N) to its rest length at t = " + num(s.t) + " s: impulse " + num(P) +
-       " N s, kinetic energy lost " + num(off_[kDissipated] - e0) + " J");
-}
-
 // Chain k engages span `span` at s (an impact); true if it then pulls (else it stays slack).
 bool Switcher::engage(State& s, size_t k, int span, const char* why) {
   const std::vector<int> modes = modes_with(k, span);
@@ -426,7 +401,14 @@ void Switcher::switch_at(State& s) {
   if (cause == 0) {
     note("chain '" + c.name + "': the " + kSpanName[sp] +
          " span's tension reaches 0 at t = " + num(s.t) + " s");
-    if (c.held[sp]) release(s, which, r[md.tension[which]]);
+    if (c.held[sp]) {  // quasi-steady: at rest + T / k, T < 0 past a jump of the loads
+      const double stretch = release_span(c, sp, rest(c, sp)), e0 = off_[kDissipated];
+      const double P = impact(s, spans_, which);  // onto the row at rest, like an engagement
+      note("chain '" + c.name + "' (quasi_steady): the " + kSpanName[sp] + " span released from " +
+           num(stretch) + " m beyond its rest length (tension " + num(r[md.tension[which]]) +
+           " N) to it at t = " + num(s.t) + " s: impulse " + num(P) + " N s, kinetic energy lost " +
+           num(off_[kDissipated] - e0) + " J");
+    }
     spans_[which] = -1;
     const Lengths L = lengths(m_, c, s.q0, s.q1, s.t);
     if (L.gap[1 - sp] <= 10 * span_tol(c, 1 - sp) && engage(s, which, 1 - sp, "takes over")) return;

@@ -224,6 +224,13 @@ void hold_still(const Model& m, double t) {
   }
 }
 
+double release_span(const ChainLoad& c, int span, double rest) {
+  HeldLength& h = held_of(c, span);
+  const double stretch = h.length - rest;
+  h.length = h.prev_length = rest;
+  return stretch;
+}
+
 namespace {
 
 // One pass: the reactions at the state, each active held value moved to its equilibrium at t
