@@ -489,8 +489,8 @@ Trajectory forward_chain_switching(const Model& m, const State& initial, const F
                   c.name);
   if (o.stop_when)
     throw Error("forward dynamics of '" + m.name +
-                    "': a stop condition (stop_when) with inextensible chains is not supported "
-                    "(the span switching uses it)",
+                    "': a stop condition (stop_when) with inextensible or quasi_steady "
+                    "chains is not supported (the span switching uses it)",
                 m.name);
   // quasi-steady elements: their held lengths carry over the legs, reset when the run ends
   const QuasiSteadyRun held(m, true);

@@ -110,7 +110,7 @@ Trajectory torque_step(double k, double delta, Model& m) {
   const double D = 0.5, L0 = std::sqrt(D * D - (ra - rb) * (ra - rb));
   m = build_model(flywheels([](double t) { return t < ts ? tau0 : -tau0; },
                             ChainFidelity::quasi_steady, k, 0, 0, L0 + delta));
-  const Trajectory r = forward_dynamics(m, at_rest(m), options(1, 101));
+  Trajectory r = forward_dynamics(m, at_rest(m), options(1, 101));
   for (const std::string& w : r.stats.warnings) std::printf("  %s\n", w.c_str());
   return r;
 }
