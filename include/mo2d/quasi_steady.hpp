@@ -19,6 +19,7 @@
 // law at zero rate gives the row's torque tau: a = -tau / k when linear) and for a quasi-steady
 // chain (the taut span's length rest + T / k; the idle span's cell waits at its rest length).
 #include <Eigen/Core>
+#include <array>
 #include <atomic>
 #include <cmath>
 #include <type_traits>
@@ -60,6 +61,11 @@ inline HeldLength& held_of(const ReducedSpring& s) {
 double quasi_steady_length(const Model& m, const ReducedSpring& s, double T,
                            const Eigen::VectorXd& q0, const Eigen::VectorXd& q1, double t);
 
+// The cell of a quasi-steady chain's span (0 upper, 1 lower; c.held[span] must be set).
+inline HeldLength& held_of(const ChainLoad& c, int span) {
+  return *reinterpret_cast<HeldLength*>(c.held[span].get());
+}
+
 // Whether m has quasi-steady elements (springs, torsional springs, chains).
 bool has_quasi_steady(const Model& m);
 
@@ -89,6 +95,26 @@ class QuasiSteadyRun {
   std::vector<HeldLength*> held_;
   bool owns_ = false, legs_ = false;
 };
+
+// The values of m's held cells (their length, rate, t0, prev_length, prev_t) at an accepted
+// state of a forward run. Every projection moves the cells, also those of a step that is then
+// rejected, of the secant tries that locate an event and of the steps to an output time inside
+// the step: the explicit drivers put the accepted state's values back before each such try
+// (restore_held), so that a cell's rate is the secant over the step from the accepted state and
+// not over whatever was projected last (a later time, or 1e-13 s away at an event's bracket).
+using HeldValues = std::vector<std::array<double, 5>>;
+HeldValues save_held(const Model& m);
+void restore_held(const Model& m, const HeldValues& v);
+// Every held cell of m at its value at t with rate 0 and no history, so that the next settling
+// starts the rate from 0 again (the span switching at an event: the held values jump with the
+// mode, and a secant over the jump, or from the event to the next leg's start, which is moved onto
+// the output grid by up to 1e-9 of its spacing, is meaningless).
+void hold_still(const Model& m, double t);
+// A quasi-steady chain's taut span (its cells held still by the switching) released to its rest
+// length (the held length at T = 0) when its tension reaches 0: where T jumps through 0 with the
+// loads the located state past the jump holds it at rest + T / k with T < 0. Returns the length
+// it held beyond its rest length (m); the caller puts the state on the row (an engagement).
+double release_span(const ChainLoad& c, int span, double rest);
 
 // Project (q0, q1) on the constraints with the quasi-steady lengths settled at t (above).
 // Throws Error naming the spring if the fixed point does not converge in 30 passes.

@@ -29,7 +29,9 @@
 // one instant) are errors naming the chain and the time. The recorded samples are the output
 // grid's; the integrated energy terms carry over from segment to segment. A quasi-steady chain
 // (ChainLoad::held) switches alike, its taut span at rest + T / k (mo2d/quasi_steady.hpp): the
-// run holds the quasi-steady cells across its legs (QuasiSteadyRun with legs), reset at its end.
+// run holds the quasi-steady cells across its legs (QuasiSteadyRun with legs), reset at its end;
+// its span whose tension reaches 0 is put at its rest length first (release_span;
+// docs/reduction.md).
 #include <Eigen/LU>
 #include <algorithm>
 #include <chrono>
@@ -53,6 +55,11 @@ constexpr int kMaxSwitches = 10000;  // switches in a run before it is refused
 const char* const kSpanName[2] = {"upper", "lower"};
 
 const auto& num = chain_log_number;  // 10 significant digits
+
+// The fidelity a chain was given (a quasi-steady chain is compiled as inextensible, with cells).
+const char* fidelity_name(const ChainLoad& c) {
+  return c.held[0] ? "quasi_steady" : "inextensible";
+}
 
 struct Lengths {
   double gap[2];  // rest - l of each span (>= 0: not longer than its rest length)
@@ -162,13 +169,14 @@ class Switcher {
     fail(k, t,
          std::string("both spans taut (the ") + kSpanName[1 - sp] +
              " span reaches its rest length while the " + kSpanName[sp] +
-             " span pulls: the centre distance would be locked); the inextensible model holds "
-             "one span at a time: use fidelity unilateral or a longer rest length");
+             " span pulls: the centre distance would be locked); fidelity " +
+             fidelity_name(chain(k)) +
+             " holds one span at a time: use fidelity unilateral or a longer rest length");
   }
   [[noreturn]] void fail(size_t k, double t, const std::string& what) const {
-    throw Error(
-        "chain '" + chain(k).name + "' (inextensible): " + what + " at t = " + fmt(t) + " s",
-        chain(k).name, t);
+    throw Error("chain '" + chain(k).name + "' (" + fidelity_name(chain(k)) + "): " + what +
+                    " at t = " + fmt(t) + " s",
+                chain(k).name, t);
   }
 };
 
@@ -208,7 +216,12 @@ void Switcher::check_both_taut(const Model& mm, const Trajectory& r) {
   for (size_t k = 0; k < chains_.size(); ++k) {
     const int sp = spans_[k];
     if (sp < 0 || watch_[k]) continue;
+    // a quasi-steady span past a jump of its tension through 0 is at rest + T / k, T < 0 (the
+    // other span longer by -T / k) until released
+    const int T =
+        chain(k).held[sp] ? r.reaction(chain(k).name + "." + kSpanName[sp] + ".tension") : -1;
     for (Eigen::Index i = 0; i < r.time.size(); ++i) {
+      if (T >= 0 && r.reactions(i, T) < 0) continue;
       const Lengths L =
           lengths(mm, chain(k), r.q0.row(i).transpose(), r.q1.row(i).transpose(), r.time[i]);
       if (L.gap[1 - sp] < -1e-6 * rest(chain(k), 1 - sp)) both_taut(k, r.time[i]);
@@ -357,6 +370,7 @@ void Switcher::start(State& s) {
 void Switcher::switch_at(State& s) {
   Mode md(chain_mode_model(m_, spans_), inner_);
   const VectorXd r = md.reactions(s.t, s.q0, s.q1);
+  if (has_quasi_steady(m_)) hold_still(m_, s.t);  // the held values jump with the mode
   size_t which = 0;
   double worst = 1e300;
   int cause = 0;  // 0 the taut span's tension, 1 the other span's length, 2 a slack span's length
@@ -380,8 +394,8 @@ void Switcher::switch_at(State& s) {
     if (++same_instant_ > kChatter)
       fail(which, s.t,
            "the span switching chatters (" + std::to_string(same_instant_) +
-               " switches at one instant): the mechanism cannot be handled by the inextensible "
-               "model; use fidelity unilateral");
+               " switches at one instant): the mechanism cannot be handled by fidelity " +
+               fidelity_name(c) + "; use fidelity unilateral");
   } else {
     same_instant_ = 0;
   }
@@ -394,6 +408,15 @@ void Switcher::switch_at(State& s) {
   if (cause == 0) {
     const std::string zero = "chain '" + c.name + "': the " + kSpanName[sp] +
                              " span's tension reaches 0 at t = " + num(s.t) + " s";
+    if (c.held[sp]) {  // quasi-steady: at rest + T / k, T < 0 past a jump of the loads
+      const double stretch = release_span(c, sp, rest(c, sp)), e0 = off_[kDissipated];
+      const double P = impact(s, spans_, which);  // onto the row at rest, like an engagement
+      note(which, "chain '" + c.name + "' (quasi_steady): the " + kSpanName[sp] +
+                      " span released from " + num(stretch) +
+                      " m beyond its rest length (tension " + num(r[md.tension[which]]) +
+                      " N) to it at t = " + num(s.t) + " s: impulse " + num(P) +
+                      " N s, kinetic energy lost " + num(off_[kDissipated] - e0) + " J");
+    }
     spans_[which] = -1;
     const Lengths L = lengths(m_, c, s.q0, s.q1, s.t);
     const bool near = L.gap[1 - sp] <= 10 * span_tol(c, 1 - sp);
@@ -473,15 +496,15 @@ Trajectory forward_chain_switching(const Model& m, const State& initial, const F
   for (const ChainLoad& c : m.chains)
     if (c.fidelity == ChainFidelity::inextensible &&
         (o.integrator == Integrator::cvode_adams || o.integrator == Integrator::baumgarte))
-      throw Error("chain '" + c.name + "' (inextensible): the integrator " +
+      throw Error("chain '" + c.name + "' (" + fidelity_name(c) + "): the integrator " +
                       to_string(o.integrator) +
                       " does not project on the constraints, and the span's length must be held "
                       "there: use cvode_bdf, dopri5, erk6, erk8 or rk4",
                   c.name);
   if (o.stop_when)
     throw Error("forward dynamics of '" + m.name +
-                    "': a stop condition (stop_when) with inextensible chains is not supported "
-                    "(the span switching uses it)",
+                    "': a stop condition (stop_when) with inextensible or quasi_steady "
+                    "chains is not supported (the span switching uses it)",
                 m.name);
   // quasi-steady elements: their held lengths carry over the legs, reset when the run ends
   const QuasiSteadyRun held(m, true);

@@ -31,6 +31,7 @@
 #include "forward/forward_run.hpp"
 #include "mo2d/dynamics.hpp"
 #include "mo2d/error.hpp"
+#include "mo2d/quasi_steady.hpp"
 #include "run/run_budget.hpp"
 
 namespace mo2d::detail {
@@ -149,6 +150,7 @@ class RkDriver {
     k_start_.resize(n_);
     k_next_.resize(n_);
     project_ = o.integrator != Integrator::baumgarte;
+    held_ = has_quasi_steady(m);
   }
 
   void run(const State& s0, Recorder& rec) {
@@ -156,6 +158,7 @@ class RkDriver {
     y << s0.q0, s0.q1, VectorXd::Zero(kEnergyTerms);
     double t = o_.t0;
     record(rec, t, y);
+    if (held_) held_start_ = save_held(m_);
     double g_prev = event(t, y);
     // adaptive: first step from the tolerance-free guess; the controller takes over from there
     double h = tab_.embedded ? std::min(1e-3, (o_.t1 - o_.t0) / 10) : o_.step;
@@ -175,6 +178,7 @@ class RkDriver {
       }
       double used = hh;
       advance(t, y, hh, h, y_new, used);
+      if (held_) held_end_ = save_held(m_);  // the accepted step's (interpolations move them)
       if (o_.stop_when) {
         const double g = event(t + used, y_new);
         if ((g_prev < 0) != (g < 0) && g_prev != 0) {
@@ -193,6 +197,7 @@ class RkDriver {
       }
       t = t_new;
       y.swap(y_new);
+      if (held_) restore_held(m_, held_end_), held_start_.swap(held_end_);
       budget_.check(t, ++d_.stats.steps, used);
     }
     d_.stats.t_end = t;
@@ -227,6 +232,10 @@ class RkDriver {
   bool project_stages_ = false;
   VectorXd q0_, q1_, y_stage_, err_;
   VectorXd y_half_, y_two_;  // step doubling (step_through)
+  // quasi-steady elements (mo2d/quasi_steady.hpp): their held cells at the accepted state every
+  // step starts from, and at the accepted step's end
+  bool held_ = false;
+  HeldValues held_start_, held_end_;
 
   void split(const VectorXd& y) {
     q0_ = y.head(m_.n0);
@@ -250,6 +259,7 @@ class RkDriver {
             bool check = true) {
     bool ok = true;
     project_stages_ = false;
+    if (held_) restore_held(m_, held_start_);  // every step starts from the accepted state (t, y)
     for (int i = 0; i < tab_.stages; ++i) {
       if (i == 0 && have_start_ &&
           check) {  // the rates at the start: evaluated when the last step ended
@@ -456,6 +466,13 @@ class RkDriver {
     double lo = 0, hi = h;
     VectorXd y_try(n_), y_best = y_hi;
     double t_best = t + h;
+    HeldValues held_best = held_end_;  // the cells of the best try (the step's end: y_hi)
+    // Quasi-steady cells: the tries settle them without a rate (prev_t NaN: rate 0 from the try's
+    // end). At a jump of the loads (a torque step that flips the condition) the secant since the
+    // step's start is the jump of the held length over the bracket, up to 1e13 times it, and the
+    // located state's velocities would be projected on it.
+    HeldValues held_from = held_start_;
+    for (std::array<double, 5>& v : held_start_) v[4] = std::numeric_limits<double>::quiet_NaN();
     int kept = 0;  // -1: lo moved last, +1: hi moved last
     bool bisect = false;
     for (int it = 0; it < 120; ++it) {
@@ -464,7 +481,10 @@ class RkDriver {
       double err = 0;
       step(t, y, mid, y_try, err, false);
       const double g = event(t + mid, y_try);
-      if ((g < 0) != (g_lo < 0) || g == 0) y_best = y_try, t_best = t + mid;
+      if ((g < 0) != (g_lo < 0) || g == 0) {
+        y_best = y_try, t_best = t + mid;
+        if (held_) held_best = save_held(m_);
+      }
       if ((g < 0) == (g_lo < 0)) {
         lo = mid, g_lo = g;
         if (kept == -1) g_hi /= 2;
@@ -479,12 +499,15 @@ class RkDriver {
     }
     d_.stats.stopped_by_event = true;
     d_.stats.t_end = t_best;
-    // output times the step passed before the event (a free step of an embedded pair)
+    // output times the step passed before the event (a free step of an embedded pair; their
+    // cells without a rate too: one may be past the jump, e.g. an output time on a torque step)
     for (; k < o_.samples; ++k) {
       const double t_out = o_.t0 + (o_.t1 - o_.t0) * k / (o_.samples - 1);
       if (!(t_out < t_best)) break;
       record_interpolated(rec, t, y, t_best, y_best, t_out);
     }
+    held_start_.swap(held_from);
+    if (held_) restore_held(m_, held_best);  // the run goes on from the located state
     record(rec, t_best, y_best);
   }
 };

@@ -195,6 +195,42 @@ QuasiSteadyRun::~QuasiSteadyRun() {
   for (HeldLength* h : held_) h->in_use = false;
 }
 
+HeldValues save_held(const Model& m) {
+  HeldValues v;
+  for (const Held& e : held_cells(m)) {
+    const HeldLength& h = *e.h;
+    v.push_back({h.length, h.rate, h.t0, h.prev_length, h.prev_t});
+  }
+  return v;
+}
+
+void restore_held(const Model& m, const HeldValues& v) {
+  size_t i = 0;
+  for (const Held& e : held_cells(m)) {
+    if (i >= v.size()) break;
+    HeldLength& h = *e.h;
+    const std::array<double, 5>& x = v[i++];
+    h.length = x[0], h.rate = x[1], h.t0 = x[2], h.prev_length = x[3], h.prev_t = x[4];
+  }
+}
+
+void hold_still(const Model& m, double t) {
+  for (const Held& e : held_cells(m)) {
+    HeldLength& h = *e.h;
+    h.length = h.prev_length = h.at(t);
+    h.rate = 0;
+    h.t0 = t;
+    h.prev_t = NAN;  // no history: the next settling starts the rate from 0 again
+  }
+}
+
+double release_span(const ChainLoad& c, int span, double rest) {
+  HeldLength& h = held_of(c, span);
+  const double stretch = h.length - rest;
+  h.length = h.prev_length = rest;
+  return stretch;
+}
+
 namespace {
 
 // One pass: the reactions at the state, each active held value moved to its equilibrium at t

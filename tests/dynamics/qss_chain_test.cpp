@@ -8,10 +8,17 @@
 //  - the torque reversing at t_s: the switch to the lower span at t_s, the lower span's length
 //    then rest + T_l / k, the held lengths back at rest after the run (and after a run that
 //    throws);
-//  - the stiff unilateral chain's spring force k e + c de/dt tends to the QSS tension as 1/k.
+//  - the stiff unilateral chain's spring force k e + c de/dt tends to the QSS tension as 1/k;
+//  - the torque reversing by a step at t_s, the upper span's tension jumping from T to -T: the
+//    span released from rest + T / k to its rest length at t_s, then, with the lower span delta
+//    longer, slack and the lower span engaging at the inextensible chain's closed-form time
+//    t_s + sqrt(2 I_a delta / (r_a tau0)) (not at the time of delta -+ T / k: the span left at
+//    rest + T / k, or at rest - T / k), or, with the default rest lengths, the lower span taking
+//    over at t_s; the lower span then held at rest + T / k.
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -38,7 +45,7 @@ BodyDef disc(const std::string& name, Vec2 c, double inertia) {
 // Two flywheels on ground axes 0.5 m apart, the drive torque `torque` on a, a chain, a viscous
 // bearing on b.
 System flywheels(std::function<double(double)> torque, ChainFidelity f, double k,
-                 double damping = 0, double bearing = 0) {
+                 double damping = 0, double bearing = 0, std::optional<double> rest_lower = {}) {
   System s("flywheels");
   s.add_ground_node("A", {0, 0});
   s.add_ground_node("B", {0.5, 0});
@@ -57,6 +64,7 @@ System flywheels(std::function<double(double)> torque, ChainFidelity f, double k
                .radius_b = rb,
                .stiffness = k,
                .damping = damping,
+               .rest_lower = rest_lower,
                .fidelity = f});
   return s;
 }
@@ -87,6 +95,75 @@ ChainValue value_at(const Model& m, const Trajectory& r, Eigen::Index i) {
 
 double held(const Model& m, int span) {
   return *m.chains[0].held[span];
+}
+
+// The time in the first warning containing `what` (after "t = "), NaN if none.
+double time_of(const Trajectory& r, const std::string& what) {
+  for (const std::string& w : r.stats.warnings)
+    if (w.find(what) != std::string::npos)
+      return std::stod(w.substr(w.find("t = ", w.find(what)) + 4));
+  return NAN;
+}
+
+// +tau0 to -tau0 at ts: the QSS chain with the lower span `delta` longer than the upper's rest.
+Trajectory torque_step(double k, double delta, Model& m) {
+  const double D = 0.5, L0 = std::sqrt(D * D - (ra - rb) * (ra - rb));
+  m = build_model(flywheels([](double t) { return t < ts ? tau0 : -tau0; },
+                            ChainFidelity::quasi_steady, k, 0, 0, L0 + delta));
+  Trajectory r = forward_dynamics(m, at_rest(m), options(1, 101));
+  for (const std::string& w : r.stats.warnings) std::printf("  %s\n", w.c_str());
+  return r;
+}
+
+// The lower span, from te on, pulls with the closed-form tension at rest + T / k.
+void expect_lower_span_holds(const Model& m, const Trajectory& r, double te, double k) {
+  const double T = upper_tension(tau0);
+  const int Tl = r.reaction("chain.lower.tension");
+  double worst_T = 0, worst_l = 0;
+  for (Eigen::Index i = 0; i < r.time.size(); ++i) {
+    if (r.time[i] < te + 1e-9) continue;
+    worst_T = std::max(worst_T, std::abs(r.reactions(i, Tl) - T));
+    worst_l = std::max(worst_l,
+                       std::abs(value_at(m, r, i).lower_length - (m.chains[0].rest_lower + T / k)));
+  }
+  std::printf("  after %.9f s: max |T_l - T| %.3g N, max |l_l - (rest + T/k)| %.3g m\n", te,
+              worst_T, worst_l);
+  EXPECT_LT(worst_T, 1e-5 * T);
+  EXPECT_LT(worst_l, 1e-9);
+}
+
+// The tension jumps from T to -T at ts; the lower span 1 mm longer (T / k = 0.43 mm): the upper
+// span released to its rest length at ts and slack from there; the lower span engaging when a
+// (decelerating at tau0 / I_a, b coasting) has taken up delta, as the inextensible chain's.
+TEST(QssChain, TorqueStepReleasesTheSpanAndTheLowerEngagesAtTheClosedFormTime) {
+  const double k = 1e5, delta = 1e-3, T = upper_tension(tau0);
+  Model m;
+  const Trajectory r = torque_step(k, delta, m);
+  // before ts: the upper span at rest + T / k
+  const ChainValue v = value_at(m, r, 49);  // t = 0.49 s
+  EXPECT_NEAR(v.upper_length, m.chains[0].rest_upper + T / k, 1e-10);
+  EXPECT_NEAR(time_of(r, "upper span released"), ts, 1e-9);
+  EXPECT_NEAR(time_of(r, "slack from"), ts, 1e-9);
+  const double te = ts + std::sqrt(2 * Ia * delta / (ra * tau0));
+  const double t_engage = time_of(r, "lower span reaches its rest length");
+  std::printf("engagement at %.9f s, closed form %.9f s (with delta - T/k: %.9f, + T/k: %.9f)\n",
+              t_engage, te, ts + std::sqrt(2 * Ia * (delta - T / k) / (ra * tau0)),
+              ts + std::sqrt(2 * Ia * (delta + T / k) / (ra * tau0)));
+  EXPECT_NEAR(t_engage, te, 1e-7);
+  expect_lower_span_holds(m, r, te, k);
+}
+
+// The default rest lengths (no dead zone): while the upper span pulls at rest + T / k the lower
+// has T / k of slack; released to its rest length at the jump, the lower span is at its length
+// and takes over at ts (no slack interval).
+TEST(QssChain, TorqueStepHandsOverToTheLowerSpanAtTheStep) {
+  const double k = 1e5;
+  Model m;
+  const Trajectory r = torque_step(k, 0, m);
+  EXPECT_NEAR(time_of(r, "upper span released"), ts, 1e-9);
+  EXPECT_NEAR(time_of(r, "takes over"), ts, 1e-9);
+  EXPECT_TRUE(std::isnan(time_of(r, "slack from")));
+  expect_lower_span_holds(m, r, ts, k);
 }
 
 TEST(QssChain, ConstantTorqueClosedFormTensionAndHeldLength) {
