@@ -3,7 +3,10 @@
 #include "forward/chain_log.hpp"
 
 #include <algorithm>
+#include <cmath>
 #include <cstdio>
+
+#include "output/trajectory_labels.hpp"
 
 namespace mo2d::detail {
 
@@ -62,6 +65,54 @@ std::vector<std::string> ChainLog::summary(const std::vector<std::string>& names
                     std::to_string(kListed) + " are)");
   }
   return out;
+}
+
+Trajectory switching_trajectory(const Model& m, int samples) {
+  const Eigen::Index N = samples;
+  Trajectory out = labelled_trajectory(m, RunKind::forward);
+  out.time = Eigen::VectorXd::Zero(N);
+  out.q0 = Eigen::MatrixXd::Zero(N, m.n0);
+  out.q1 = out.a1 = Eigen::MatrixXd::Zero(N, m.n1);
+  out.efforts = Eigen::MatrixXd::Zero(N, m.n_inputs());
+  out.reactions = Eigen::MatrixXd::Zero(N, m.n_reactions());
+  out.residuals = Eigen::MatrixXd::Zero(N, 2);
+  out.kinetic = out.potential = out.input_work = out.load_work = out.constraint_work =
+      out.dissipated = Eigen::VectorXd::Zero(N);
+  return out;
+}
+
+void append_leg(Trajectory& out, int& filled, const Trajectory& r, const ForwardOptions& o,
+                double (&off)[kEnergyTerms]) {
+  const double h = (o.t1 - o.t0) / (o.samples - 1);
+  std::vector<int> col(out.reaction_labels.size(), -1);
+  for (size_t j = 0; j < col.size(); ++j)
+    for (size_t i = 0; i < r.reaction_labels.size(); ++i)
+      if (r.reaction_labels[i] == out.reaction_labels[j]) col[j] = static_cast<int>(i);
+  for (Eigen::Index i = 0; i < r.time.size() && filled < o.samples; ++i) {
+    const double t_k = o.t0 + (o.t1 - o.t0) * filled / (o.samples - 1);
+    if (!(std::abs(r.time[i] - t_k) <= 1e-9 * h)) continue;
+    const int k = filled++;
+    out.time[k] = t_k;
+    out.q0.row(k) = r.q0.row(i);
+    out.q1.row(k) = r.q1.row(i);
+    out.a1.row(k) = r.a1.row(i);
+    out.efforts.row(k) = r.efforts.row(i);
+    for (size_t j = 0; j < col.size(); ++j)
+      out.reactions(k, static_cast<Eigen::Index>(j)) = col[j] < 0 ? 0.0 : r.reactions(i, col[j]);
+    out.residuals.row(k) = r.residuals.row(i);
+    out.kinetic[k] = r.kinetic[i];
+    out.potential[k] = r.potential[i];
+    out.input_work[k] = off[kInputWork] + r.input_work[i];
+    out.load_work[k] = off[kLoadWork] + r.load_work[i];
+    out.constraint_work[k] = off[kConstraintWork] + r.constraint_work[i];
+    out.dissipated[k] = off[kDissipated] + r.dissipated[i];
+  }
+  const Eigen::Index e = r.time.size() - 1;
+  off[kInputWork] += r.input_work[e];
+  off[kLoadWork] += r.load_work[e];
+  off[kConstraintWork] += r.constraint_work[e];
+  off[kDissipated] += r.dissipated[e];
+  add_leg_stats(out.stats, r.stats);
 }
 
 }  // namespace mo2d::detail

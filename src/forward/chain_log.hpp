@@ -5,11 +5,12 @@
 // centres, whose load reverses: they are counted, one line per chain at the end of the run
 // (count, first and last time). Everything else (slack intervals, engagements with an impulse, a
 // span that does not hold) is a line of its own, the first kListed of each chain; the rest are
-// counted in a closing line.
+// counted in a closing line. The legs' samples and statistics gathered into the run's.
 #include <cstddef>
 #include <string>
 #include <vector>
 
+#include "forward/forward_run.hpp"
 #include "mo2d/trajectory.hpp"
 
 namespace mo2d::detail {
@@ -20,6 +21,15 @@ std::string chain_log_number(double v);
 
 // A leg's statistics and warnings added to the run's (its t_end the leg's).
 void add_leg_stats(RunStats& run, const RunStats& leg);
+
+// The switching run's trajectory: m's forward labels, `samples` rows of zeros.
+Trajectory switching_trajectory(const Model& m, int samples);
+
+// A leg's samples that fall on the output grid of o (t0 + (t1 - t0) k / (samples - 1)) written to
+// `out` from row `filled` on, reactions by label and the energy terms plus `off` (their values at
+// the leg's start); off is then advanced to the leg's end, and the leg's statistics added.
+void append_leg(Trajectory& out, int& filled, const Trajectory& leg, const ForwardOptions& o,
+                double (&off)[kEnergyTerms]);
 
 class ChainLog {
  public:

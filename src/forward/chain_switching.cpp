@@ -156,7 +156,6 @@ class Switcher {
   }
   double event(Mode& md, double t, const VectorXd& q0, const VectorXd& q1);
   Trajectory leg(Mode& md, const State& s, double t1, int samples);
-  void append(const Trajectory& leg);
   void start(State& s);
   void switch_at(State& s);
   bool engage(State& s, size_t k, int span, const char* why, const std::string& zero = "");
@@ -252,39 +251,6 @@ Trajectory Switcher::leg(Mode& md, const State& s, double t1, int samples) {
     return event(md, t, q0, q1);
   };
   return forward_dynamics(md.model, s, o);
-}
-
-// The leg's samples that fall on the output grid, with the energy terms carried over.
-void Switcher::append(const Trajectory& r) {
-  const double h = (o_.t1 - o_.t0) / (o_.samples - 1);
-  std::vector<int> col(out_.reaction_labels.size(), -1);
-  for (size_t j = 0; j < col.size(); ++j)
-    for (size_t i = 0; i < r.reaction_labels.size(); ++i)
-      if (r.reaction_labels[i] == out_.reaction_labels[j]) col[j] = static_cast<int>(i);
-  for (Eigen::Index i = 0; i < r.time.size() && filled_ < o_.samples; ++i) {
-    if (!(std::abs(r.time[i] - grid(filled_)) <= 1e-9 * h)) continue;
-    const int k = filled_++;
-    out_.time[k] = grid(k);
-    out_.q0.row(k) = r.q0.row(i);
-    out_.q1.row(k) = r.q1.row(i);
-    out_.a1.row(k) = r.a1.row(i);
-    out_.efforts.row(k) = r.efforts.row(i);
-    for (size_t j = 0; j < col.size(); ++j)
-      out_.reactions(k, static_cast<Eigen::Index>(j)) = col[j] < 0 ? 0.0 : r.reactions(i, col[j]);
-    out_.residuals.row(k) = r.residuals.row(i);
-    out_.kinetic[k] = r.kinetic[i];
-    out_.potential[k] = r.potential[i];
-    out_.input_work[k] = off_[kInputWork] + r.input_work[i];
-    out_.load_work[k] = off_[kLoadWork] + r.load_work[i];
-    out_.constraint_work[k] = off_[kConstraintWork] + r.constraint_work[i];
-    out_.dissipated[k] = off_[kDissipated] + r.dissipated[i];
-  }
-  const Eigen::Index e = r.time.size() - 1;
-  off_[kInputWork] += r.input_work[e];
-  off_[kLoadWork] += r.load_work[e];
-  off_[kConstraintWork] += r.constraint_work[e];
-  off_[kDissipated] += r.dissipated[e];
-  add_leg_stats(out_.stats, r.stats);
 }
 
 // The tension of chain k's span in `modes` at s (its mode's least-squares multiplier).
@@ -411,11 +377,12 @@ void Switcher::switch_at(State& s) {
     if (c.held[sp]) {  // quasi-steady: at rest + T / k, T < 0 past a jump of the loads
       const double stretch = release_span(c, sp, rest(c, sp)), e0 = off_[kDissipated];
       const double P = impact(s, spans_, which);  // onto the row at rest, like an engagement
-      note(which, "chain '" + c.name + "' (quasi_steady): the " + kSpanName[sp] +
-                      " span released from " + num(stretch) +
-                      " m beyond its rest length (tension " + num(r[md.tension[which]]) +
-                      " N) to it at t = " + num(s.t) + " s: impulse " + num(P) +
-                      " N s, kinetic energy lost " + num(off_[kDissipated] - e0) + " J");
+      if (std::abs(stretch) > span_tol(c, sp))    // else the tension reached 0 at rest: no release
+        note(which, "chain '" + c.name + "' (quasi_steady): the " + kSpanName[sp] +
+                        " span released from " + num(stretch) +
+                        " m beyond its rest length (tension " + num(r[md.tension[which]]) +
+                        " N) to it at t = " + num(s.t) + " s: impulse " + num(P) +
+                        " N s, kinetic energy lost " + num(off_[kDissipated] - e0) + " J");
     }
     spans_[which] = -1;
     const Lengths L = lengths(m_, c, s.q0, s.q1, s.t);
@@ -435,15 +402,7 @@ void Switcher::switch_at(State& s) {
 
 Trajectory Switcher::run(const State& initial) {
   const int N = o_.samples;
-  out_ = labelled_trajectory(m_, RunKind::forward);
-  out_.time = VectorXd::Zero(N);
-  out_.q0 = MatrixXd::Zero(N, m_.n0);
-  out_.q1 = out_.a1 = MatrixXd::Zero(N, m_.n1);
-  out_.efforts = MatrixXd::Zero(N, m_.n_inputs());
-  out_.reactions = MatrixXd::Zero(N, m_.n_reactions());
-  out_.residuals = MatrixXd::Zero(N, 2);
-  out_.kinetic = out_.potential = out_.input_work = out_.load_work = out_.constraint_work =
-      out_.dissipated = VectorXd::Zero(N);
+  out_ = switching_trajectory(m_, N);
   State s = initial;
   s.t = o_.t0;
   start(s);
@@ -471,7 +430,7 @@ Trajectory Switcher::run(const State& initial) {
       r = leg(md, s, grid(filled_), 2);
     }
     check_both_taut(md.model, r);
-    append(r);
+    append_leg(out_, filled_, r, o_, off_);
     const Eigen::Index e = r.time.size() - 1;
     s.t = r.time[e];
     s.q0 = r.q0.row(e).transpose();

@@ -161,7 +161,7 @@ TEST(QssChain, TorqueStepHandsOverToTheLowerSpanAtTheStep) {
   Model m;
   const Trajectory r = torque_step(k, 0, m);
   EXPECT_NEAR(time_of(r, "upper span released"), ts, 1e-9);
-  EXPECT_NEAR(time_of(r, "takes over"), ts, 1e-9);
+  EXPECT_NEAR(time_of(r, "direct handover"), ts, 1e-9);  // counted: no slack, no impulse
   EXPECT_TRUE(std::isnan(time_of(r, "slack from")));
   expect_lower_span_holds(m, r, ts, k);
 }
@@ -198,8 +198,8 @@ TEST(QssChain, SwitchesAtTheClosedFormTimeAndHoldsTheLowerSpanAtRestPlusTOverK) 
   double t_switch = NAN;
   for (const std::string& w : r.stats.warnings) {
     std::printf("  %s\n", w.c_str());
-    if (std::isnan(t_switch) && w.find("upper span's tension reaches 0") != std::string::npos)
-      t_switch = std::stod(w.substr(w.find("t = ") + 4));
+    if (std::isnan(t_switch) && w.find("1 upper to lower") != std::string::npos)
+      t_switch = std::stod(w.substr(w.find("first at t = ") + 13));  // the handover's summary
   }
   EXPECT_NEAR(t_switch, ts, 1e-7);
   const int Tu = r.reaction("chain.upper.tension"), Tl = r.reaction("chain.lower.tension");
