@@ -123,6 +123,9 @@ TEST(StructuredSchur, AccelerationsEqualTheDenseSchurSolve) {
       EXPECT_LE(da, 1e-12) << m.name << " state " << seed;
       EXPECT_LE(dl, 1e-12) << m.name << " state " << seed;
       EXPECT_NEAR(ratio, s.ratio, 1e-12 * s.ratio) << m.name;
+      // ForwardData's own solve (its pattern checked entry by entry as A is written): the same
+      // arithmetic as the StructuredSchur above, so the same bits
+      EXPECT_EQ(d.a, a) << m.name << " state " << seed;
       worst = std::max({worst, da, dl});
       ++checked;
     }
@@ -177,6 +180,43 @@ TEST(StructuredSchur, RandomPatternsAndAGrownPattern) {
     worst = std::max({worst, rel(a, s.a), rel(lambda, s.lambda)});
   }
   std::printf("structured vs dense Schur, random patterns: worst %.2g\n", worst);
+}
+
+// in_pattern (the check ForwardData makes as each entry of A is written) names exactly the
+// entries analysed; an entry outside is found, and grow() by the entries written makes the
+// pattern cover A, with the dense solve's result.
+TEST(StructuredSchur, InPatternFindsAnEntryOutsideThePattern) {
+  meta::Rng rng(77);
+  for (int trial = 0; trial < 30; ++trial) {
+    const int n = rng.integer(4, 16), m = rng.integer(1, n - 1);
+    const MatrixXd Minv = MatrixXd::Identity(n, n) * rng.uniform(0.5, 2);
+    MatrixXd A = MatrixXd::Zero(m, n);
+    for (int i = 0; i < m; ++i)
+      for (int e = rng.integer(2, std::min(6, n)); e > 0; --e)
+        A(i, rng.integer(0, n - 1)) = rng.uniform(-2, 2);
+    const auto rows = pattern_of(A, true);  // one entry per row left out
+    detail::StructuredSchur schur;
+    schur.analyse(rows, Minv);
+    std::vector<std::vector<int>> outside(m);
+    for (int i = 0; i < m; ++i)
+      for (int j = 0; j < n; ++j) {
+        const bool listed = std::find(rows[i].begin(), rows[i].end(), j) != rows[i].end();
+        ASSERT_EQ(schur.in_pattern(i, j), listed) << trial << " (" << i << ", " << j << ")";
+        if (A(i, j) != 0 && !listed) outside[i].push_back(j);
+      }
+    ASSERT_FALSE(schur.covers(A));
+    schur.grow(outside, Minv);
+    ASSERT_TRUE(schur.covers(A));
+    for (int i = 0; i < m; ++i)
+      for (const int j : outside[i]) EXPECT_TRUE(schur.in_pattern(i, j));
+    const VectorXd d = VectorXd::Ones(n), rhs = VectorXd::LinSpaced(n, -1, 1);
+    const VectorXd c = VectorXd::LinSpaced(m, 1, 2);
+    const DenseSchur s = dense_schur(A, Minv, d, rhs, c);
+    VectorXd row_scale(m), r(m), a(n), lambda(m);
+    if (!(schur.factor(A, d, row_scale) >= 1e-6) || !(s.ratio >= 1e-6)) continue;
+    schur.solve(rhs, c, row_scale, r, a, lambda);
+    EXPECT_LE(rel(a, s.a), 1e-12) << trial;
+  }
 }
 
 }  // namespace
