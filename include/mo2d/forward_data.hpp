@@ -198,6 +198,7 @@ struct ForwardData {
   void evaluate_friction(double t, const VectorXd& q0, const VectorXd& q1);
   void reactions_at(double t, const VectorXd& q0, const VectorXd& q1);
   void init_sparse();
+  void fill_velocity_schur(double t, const VectorXd& q0);
   void solve_sparse(double t, const VectorXd& q0);
   void project_sparse(double t, VectorXd& q0, VectorXd& q1, double tol_pos, double tol_vel);
   void solve_augmented_lagrangian(double t, const VectorXd& q0);

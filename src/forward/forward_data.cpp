@@ -6,6 +6,7 @@
 
 #include <Eigen/QR>
 #include <algorithm>
+#include <cassert>
 #include <cmath>
 #include <memory>
 #include <sstream>
@@ -65,23 +66,6 @@ void init_vectors(ForwardData& d) {
   d.friction = d.friction_next = VectorXd::Zero(static_cast<int>(d.m.frictions.size()));
 }
 
-// Records the columns of the entries of each velocity row (their values are ignored): A's pattern.
-struct PatternSink {
-  std::vector<std::vector<int>>& rows;
-  void add(int row, const VarRef& ref, double /*value*/) {
-    if (ref.var >= 0) rows[row].push_back(ref.var);
-  }
-};
-
-// The pattern of A (fixed by the constraints' kinds and variables, the state only sets values).
-std::vector<std::vector<int>> velocity_pattern(const Model& m) {
-  std::vector<std::vector<int>> rows(m.m1);
-  PatternSink sink{rows};
-  VectorXd rhs = VectorXd::Zero(m.m1);
-  for (const auto& c : m.constraints) detail::velocity_rows(m, c, m.q0, 0.0, rhs, sink);
-  return rows;
-}
-
 }  // namespace
 
 ForwardData::ForwardData(const Model& model, const ForwardOptions& opt) : m(model), o(opt) {
@@ -111,7 +95,9 @@ ForwardData::ForwardData(const Model& model, const ForwardOptions& opt) : m(mode
   }
   if (has_Minv) {
     schur_ = std::make_unique<detail::StructuredSchur>();
-    schur_->analyse(velocity_pattern(m), Minv);
+    // A's pattern: the entries the constraints write at q0 (the first fill grows the empty one)
+    schur_->analyse(std::vector<std::vector<int>>(m.m1), Minv);
+    fill_velocity_schur(0.0, m.q0);
   }
   KKT = MatrixXd::Zero(m.n1 + m.m1, m.n1 + m.m1);
   KKT.topLeftCorner(m.n1, m.n1) = M;
@@ -180,7 +166,8 @@ double ForwardData::solve_schur() {
     a.noalias() = Minv * rhs;
     return 1.0;
   }
-  if (!schur_->covers(A)) schur_->grow(A, Minv);  // an entry outside the pattern (allocates)
+  // the pattern covers A: fill_velocity_rows grew it if the state wrote an entry outside it
+  assert(schur_->covers(A));
   const double ratio = schur_->factor(A, col_scale, row_scale);
   if (!(ratio >= kDirectAccept)) return ratio;
   schur_->solve(rhs, c, row_scale, r1, a, lambda);

@@ -5,10 +5,13 @@
 #include <cmath>
 #include <memory>
 #include <string>
+#include <vector>
 
+#include "constraints/constraints.hpp"
 #include "dynamics/reactions.hpp"
 #include "forward/alf_iterate.hpp"
 #include "forward/sparse_engine.hpp"
+#include "linalg/structured_schur.hpp"
 #include "mo2d/dynamics.hpp"
 #include "mo2d/error.hpp"
 #include "mo2d/forward_data.hpp"
@@ -18,6 +21,41 @@
 namespace mo2d {
 
 using detail::fmt;
+
+namespace {
+
+// Records the columns of the entries of each velocity row (their values are ignored): A's pattern.
+struct PatternSink {
+  std::vector<std::vector<int>>& rows;
+  void add(int row, const VarRef& ref, double /*value*/) {
+    if (ref.var >= 0) rows[row].push_back(ref.var);
+  }
+};
+
+// The pattern of A at (q0, t): the entries the constraints write there, whatever their values
+// (fixed by the constraints' kinds and variables; a state may add one: SchurSink).
+std::vector<std::vector<int>> velocity_pattern(const Model& m, const VectorXd& q0, double t) {
+  std::vector<std::vector<int>> rows(m.m1);
+  PatternSink sink{rows};
+  VectorXd rhs = VectorXd::Zero(m.m1);
+  for (const auto& c : m.constraints) detail::velocity_rows(m, c, q0, t, rhs, sink);
+  return rows;
+}
+
+// Writes A as DenseVelSink does and notes an entry outside the structured Schur's pattern, so
+// that the pattern check costs one table look-up per entry written, not a pass over all of A.
+struct SchurSink {
+  MatrixXd& A;
+  const detail::StructuredSchur& schur;
+  bool outside = false;
+  void add(int row, const VarRef& ref, double v) {
+    if (ref.var < 0) return;
+    A(row, ref.var) += v;
+    outside = outside || !schur.in_pattern(row, ref.var);
+  }
+};
+
+}  // namespace
 
 // The sparse path (sparse_engine.hpp): M and the products as sparse matrices in the engine; the
 // dense matrices stay empty (the vectors: init_vectors).
@@ -101,9 +139,20 @@ void ForwardData::project_sparse(double t, VectorXd& q0, VectorXd& q1, double to
   }
 }
 
+// A and b at (t, q0) on the dense path with the structured Schur: an entry written outside its
+// pattern grows the pattern by the entries written at this state (allocates, once per new entry).
+void ForwardData::fill_velocity_schur(double t, const VectorXd& q0) {
+  A.setZero();
+  SchurSink sink{A, *schur_};
+  for (const auto& k : m.constraints) detail::velocity_rows(m, k, q0, t, b, sink);
+  if (sink.outside) schur_->grow(velocity_pattern(m, q0, t), Minv);
+}
+
 void ForwardData::fill_velocity_rows(double t, const VectorXd& q0) {
   if (sparse_)
     sparse_->fill_velocity(q0, t, b);
+  else if (schur_)
+    fill_velocity_schur(t, q0);
   else
     velocity_jacobian(m, q0, t, A, b);
 }

@@ -42,6 +42,13 @@ void StructuredSchur::analyse(const std::vector<std::vector<int>>& rows, const M
     row_ptr_.push_back(static_cast<int>(col_.size()));
   }
   an_.assign(col_.size(), 0.0);
+  lin_.resize(col_.size());
+  in_.assign(static_cast<std::size_t>(m_) * n_, 0);
+  for (int i = 0; i < m_; ++i)
+    for (int a = row_ptr_[i]; a < row_ptr_[i + 1]; ++a) {
+      lin_[a] = i + col_[a] * m_;
+      in_[lin_[a]] = 1;
+    }
   minv_rows(Minv, minv_ptr_, minv_col_, minv_val_);
   // P's pattern, row by row, and the products that make its entries; pos[i][l]: index of P(i, l)
   std::vector<std::vector<int>> pos(m_, std::vector<int>(n_, -1));
@@ -89,15 +96,24 @@ void StructuredSchur::grow(const MatrixXd& A, const MatrixXd& Minv) {
   analyse(rows, Minv);
 }
 
+void StructuredSchur::grow(const std::vector<std::vector<int>>& extra, const MatrixXd& Minv) {
+  std::vector<std::vector<int>> rows = rows_;
+  for (int i = 0; i < m_; ++i) rows[i].insert(rows[i].end(), extra[i].begin(), extra[i].end());
+  analyse(rows, Minv);
+}
+
 double StructuredSchur::factor(const MatrixXd& A, const VectorXd& col_scale, VectorXd& row_scale) {
+  const double* A_data = A.data();
+  for (int a = 0; a < static_cast<int>(lin_.size()); ++a) an_[a] = A_data[lin_[a]];
   for (int i = 0; i < m_; ++i) {  // N: unit rows of A D (as detail::unit_row_scale)
     double s = 0;
     for (int a = row_ptr_[i]; a < row_ptr_[i + 1]; ++a) {
-      const double x = A(i, col_[a]) * col_scale[col_[a]];
+      const double x = an_[a] * col_scale[col_[a]];
       s += x * x;
     }
-    row_scale[i] = s > 0 ? 1.0 / std::sqrt(s) : 1.0;
-    for (int a = row_ptr_[i]; a < row_ptr_[i + 1]; ++a) an_[a] = row_scale[i] * A(i, col_[a]);
+    const double n = s > 0 ? 1.0 / std::sqrt(s) : 1.0;
+    row_scale[i] = n;
+    for (int a = row_ptr_[i]; a < row_ptr_[i + 1]; ++a) an_[a] *= n;
   }
   std::fill(p_.begin(), p_.end(), 0.0);
   for (const PTerm& t : p_terms_) p_[t.p_at] += an_[t.a] * minv_val_[t.v];

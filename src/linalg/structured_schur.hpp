@@ -21,8 +21,13 @@ class StructuredSchur {
   // rows[i]: the columns of the (structural) entries of row i of A; Minv: the constant M^-1.
   void analyse(const std::vector<std::vector<int>>& rows, const Eigen::MatrixXd& Minv);
   bool analysed() const { return !row_ptr_.empty(); }
-  // Every nonzero of A lies in the pattern (else: grow() before factor()).
+  // Every nonzero of A lies in the pattern (else: grow() before factor()). Reads all of A: the
+  // forward path checks each entry as it is written instead (in_pattern).
   bool covers(const Eigen::MatrixXd& A) const;
+  // (row, col) is an entry of the pattern analysed (O(1): a table of m1 x n1 flags)
+  bool in_pattern(int row, int col) const { return in_[row + static_cast<std::size_t>(col) * m_]; }
+  // The pattern extended by the given entries of each row, analysed again (allocates).
+  void grow(const std::vector<std::vector<int>>& extra, const Eigen::MatrixXd& Minv);
   // The pattern extended by the nonzeros of A, analysed again (allocates; a model whose rows
   // gain entries with the state).
   void grow(const Eigen::MatrixXd& A, const Eigen::MatrixXd& Minv);
@@ -38,7 +43,9 @@ class StructuredSchur {
   int m_ = 0, n_ = 0;
   std::vector<std::vector<int>> rows_;  // the pattern analysed
   std::vector<int> row_ptr_, col_;      // A's pattern, compressed by rows
-  std::vector<double> an_;              // N A along the pattern
+  std::vector<int> lin_;    // index of each entry of the pattern in A's column-major data
+  std::vector<char> in_;    // in_[i + j m1]: (i, j) is in the pattern
+  std::vector<double> an_;  // N A along the pattern
   // M^-1 by rows (symmetric): its nonzeros
   std::vector<int> minv_ptr_, minv_col_;
   std::vector<double> minv_val_;

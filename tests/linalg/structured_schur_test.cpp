@@ -9,6 +9,7 @@
 #include <gtest/gtest.h>
 
 #include <Eigen/Cholesky>
+#include <Eigen/Eigenvalues>
 #include <algorithm>
 #include <cmath>
 #include <vector>
@@ -123,6 +124,9 @@ TEST(StructuredSchur, AccelerationsEqualTheDenseSchurSolve) {
       EXPECT_LE(da, 1e-12) << m.name << " state " << seed;
       EXPECT_LE(dl, 1e-12) << m.name << " state " << seed;
       EXPECT_NEAR(ratio, s.ratio, 1e-12 * s.ratio) << m.name;
+      // ForwardData's own solve (its pattern checked entry by entry as A is written): the same
+      // arithmetic as the StructuredSchur above, so the same bits
+      EXPECT_EQ(d.a, a) << m.name << " state " << seed;
       worst = std::max({worst, da, dl});
       ++checked;
     }
@@ -177,6 +181,76 @@ TEST(StructuredSchur, RandomPatternsAndAGrownPattern) {
     worst = std::max({worst, rel(a, s.a), rel(lambda, s.lambda)});
   }
   std::printf("structured vs dense Schur, random patterns: worst %.2g\n", worst);
+}
+
+// A random m x n A with rows of 2 to 6 entries.
+MatrixXd random_rows(meta::Rng& rng, int m, int n) {
+  MatrixXd A = MatrixXd::Zero(m, n);
+  for (int i = 0; i < m; ++i)
+    for (int e = rng.integer(2, std::min(6, n)); e > 0; --e)
+      A(i, rng.integer(0, n - 1)) = rng.uniform(-2, 2);
+  return A;
+}
+
+// The nonzeros of A outside `rows`, row by row; expects in_pattern to name exactly `rows`.
+std::vector<std::vector<int>> outside_entries(const detail::StructuredSchur& schur,
+                                              const MatrixXd& A,
+                                              const std::vector<std::vector<int>>& rows) {
+  std::vector<std::vector<int>> outside(A.rows());
+  for (int i = 0; i < A.rows(); ++i)
+    for (int j = 0; j < A.cols(); ++j) {
+      const bool listed = std::find(rows[i].begin(), rows[i].end(), j) != rows[i].end();
+      EXPECT_EQ(schur.in_pattern(i, j), listed) << "(" << i << ", " << j << ")";
+      if (A(i, j) != 0 && !listed) outside[i].push_back(j);
+    }
+  return outside;
+}
+
+// The structured solve against the dense one where cond(G) <= 1e3 (they agree to about
+// eps cond(G); the ratio of L's diagonal is only an estimate of 1 / cond(G)); a against the
+// larger of its two terms (they may cancel). Returns whether it compared.
+bool solves_agree(detail::StructuredSchur& schur, const MatrixXd& A, const MatrixXd& Minv) {
+  const int m = static_cast<int>(A.rows()), n = static_cast<int>(A.cols());
+  const VectorXd d = VectorXd::Ones(n), rhs = VectorXd::LinSpaced(n, -1, 1);
+  const VectorXd c = VectorXd::LinSpaced(m, 1, 2);
+  const DenseSchur s = dense_schur(A, Minv, d, rhs, c);
+  const MatrixXd An = s.row_scale.asDiagonal() * A;
+  const VectorXd ev =
+      Eigen::SelfAdjointEigenSolver<MatrixXd>(An * Minv * An.transpose()).eigenvalues();
+  VectorXd row_scale(m), r(m), a(n), lambda(m);
+  if (!(schur.factor(A, d, row_scale) >= 1e-2) || !(ev[0] > 1e-3 * ev[m - 1])) return false;
+  schur.solve(rhs, c, row_scale, r, a, lambda);
+  const VectorXd free = Minv * rhs, held = Minv * A.transpose() * s.lambda;
+  const double scale = std::max({s.a.lpNorm<Eigen::Infinity>(), free.lpNorm<Eigen::Infinity>(),
+                                 held.lpNorm<Eigen::Infinity>()});
+  EXPECT_LE((a - s.a).lpNorm<Eigen::Infinity>() / scale, 1e-12);
+  EXPECT_LE(rel(lambda, s.lambda), 1e-12);
+  return true;
+}
+
+// in_pattern (the check ForwardData makes as each entry of A is written) names exactly the
+// entries analysed; an entry outside is found, and grow() by the entries written makes the
+// pattern cover A, with the dense solve's result.
+TEST(StructuredSchur, InPatternFindsAnEntryOutsideThePattern) {
+  meta::Rng rng(77);
+  int solved = 0;
+  for (int trial = 0; trial < 30; ++trial) {
+    SCOPED_TRACE(trial);
+    const int n = rng.integer(4, 16), m = rng.integer(1, n - 1);
+    const MatrixXd Minv = MatrixXd::Identity(n, n) * rng.uniform(0.5, 2);
+    const MatrixXd A = random_rows(rng, m, n);
+    const auto rows = pattern_of(A, true);  // one entry per row left out
+    detail::StructuredSchur schur;
+    schur.analyse(rows, Minv);
+    const auto outside = outside_entries(schur, A, rows);
+    ASSERT_FALSE(schur.covers(A));
+    schur.grow(outside, Minv);
+    ASSERT_TRUE(schur.covers(A));
+    for (int i = 0; i < m; ++i)
+      for (const int j : outside[i]) EXPECT_TRUE(schur.in_pattern(i, j));
+    solved += solves_agree(schur, A, Minv) ? 1 : 0;
+  }
+  EXPECT_GE(solved, 5);
 }
 
 }  // namespace
