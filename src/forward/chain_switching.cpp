@@ -36,6 +36,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <limits>
 
 #include "dynamics/chain.hpp"
 #include "forward/chain_log.hpp"
@@ -259,12 +260,24 @@ double Switcher::tension_in(const std::vector<int>& modes, size_t k, const State
   return md.reactions(s.t, s.q0, s.q1)[md.tension[k]];
 }
 
+// The tolerance of an engagement's assembly, relative to m.scale: 1e-13, or above the round-off of
+// the span lengths, which carry r theta of the unwrapped sprocket angles (the QSS half-bike's
+// scenario 2 turns the shaft by ~1e4 rad: Newton stalled at a residual of 2.5e-13 m).
+double impact_tolerance(const Model& m, const VectorXd& q0) {
+  double wrapped = 0;  // m
+  for (const ChainLoad& c : m.chains)
+    for (const auto& [var, r] :
+         {std::pair{c.theta_a, c.radius_a}, std::pair{c.theta_b, c.radius_b}})
+      if (var >= 0) wrapped += r * std::abs(q0[var]);
+  return std::max(1e-13, 16 * std::numeric_limits<double>::epsilon() * wrapped / m.scale);
+}
+
 // A perfectly inelastic engagement: s's positions put on the rows of `modes`, its velocities
 // projected on them in the mass metric; returns chain k's impulse (N s) and adds the kinetic
 // energy lost to the dissipated energy.
 double Switcher::impact(State& s, const std::vector<int>& modes, size_t k) {
   const Model mm = chain_mode_model(m_, modes);
-  s.q0 = assemble(mm, s.q0, s.t, {}, 1e-13);
+  s.q0 = assemble(mm, s.q0, s.t, {}, impact_tolerance(mm, s.q0));
   const int n = mm.n1, rows = mm.m1;
   MatrixXd K = MatrixXd::Zero(n + rows, n + rows);
   const MatrixXd M = mass_matrix(mm);

@@ -250,20 +250,55 @@ double settle_pass(ForwardData& d, double t, const Eigen::VectorXd& q0, const Ei
   return moved;
 }
 
+// The equilibrium values of the active cells at the state (t, q0, q1) (one evaluation of the
+// accelerations and reactions), into L (the cells' order).
+void equilibria(ForwardData& d, double t, const Eigen::VectorXd& q0, const Eigen::VectorXd& q1,
+                std::vector<double>& L) {
+  d.accelerations(t, q0, q1, false);
+  d.compute_reactions(t, q0, q1);
+  L.clear();
+  for (const Held& e : held_cells(d.m))
+    L.push_back(e.active ? equilibrium(d.m, e, d.reactions, q0, q1, t) : e.rest);
+}
+
+// The time step of the one-sided differences of rates_along_motion (s): round-off of the
+// equilibrium (~1e-13 of T / k) over it stays far below the rate, its truncation (eps L'' / 2)
+// far below what the next settling corrects.
+constexpr double kRateStep = 1e-6;
+
 // The settled values at t become the start of the next interval: L(t') = L_n + Ldot_n (t' - t_n)
-// with Ldot_n the rate since the last settling (0 at the first). A chain's idle span waits at
-// rest (its history forgotten: it engages from its rest length).
-void extrapolate(const Model& m, double t) {
+// with Ldot_n the derivative of the equilibrium value along the motion, d/dt L_eq(t, q0, q1)
+// (Ldot = Tdot / k for a linear spring): one-sided differences over (t, q0, q1) -+ eps (q0', a),
+// q0' = q1.head(n0), a the accelerations at the state (d.a, of the last settle_pass). Their minmod
+// (the smaller when of one sign, else 0): at a jump of the loads within eps of t (a torque step,
+// an event located next to it) one side sees the jump and is not used. Not the secant of the
+// settled values over the last step: the velocities are projected on the rate, and T depends on
+// the velocities (bearing damping, reflected along the span), so the secant carried the jump of
+// T at the last projection divided by the step, a loop gain c / (k h) that made the half-bike's
+// scenario 2 diverge once the step fell below c / k. A chain's idle span waits at rest (its
+// history forgotten: it engages from its rest length).
+void rates_along_motion(ForwardData& d, double t, const Eigen::VectorXd& q0,
+                        const Eigen::VectorXd& q1) {
+  const Model& m = d.m;
+  const Eigen::VectorXd a = d.a;
+  std::vector<double> L, side[2];
+  for (const Held& e : held_cells(m)) L.push_back(e.h->length);
+  for (int s : {0, 1}) {
+    const double eps = s == 0 ? kRateStep : -kRateStep;
+    const Eigen::VectorXd p0 = q0 + eps * q1.head(m.n0), p1 = q1 + eps * a;
+    equilibria(d, t + eps, p0, p1, side[s]);
+  }
+  size_t i = 0;
   for (const Held& e : held_cells(m)) {
     HeldLength& h = *e.h;
+    const double fwd = (side[0][i] - L[i]) / kRateStep, bwd = (L[i] - side[1][i]) / kRateStep;
+    ++i;
     if (!e.active) {
       reset_cell(h, e.rest);
       continue;
     }
-    h.rate = std::isfinite(h.prev_t) && t != h.prev_t ? (h.length - h.prev_length) / (t - h.prev_t)
-                                                      : 0.0;
-    h.prev_length = h.length;
-    h.prev_t = t;
+    h.rate = fwd * bwd <= 0 ? 0.0 : std::abs(fwd) < std::abs(bwd) ? fwd : bwd;
+    h.t0 = t;
   }
 }
 
@@ -272,14 +307,15 @@ void extrapolate(const Model& m, double t) {
 void settle_quasi_steady(ForwardData& d, double t, Eigen::VectorXd& q0, Eigen::VectorXd& q1,
                          double tol_pos, double tol_vel) {
   const Model& m = d.m;
+  // the rates first (at the state projected with the values held so far, their equilibrium
+  // values there), then the values settled with the velocities on the new rates: the state ends
+  // where its held values are their equilibrium (T depends on the velocities)
   d.project_held(t, q0, q1, tol_pos, tol_vel);
+  settle_pass(d, t, q0, q1);
+  rates_along_motion(d, t, q0, q1);
   for (int pass = 0; pass < 30; ++pass) {
-    if (settle_pass(d, t, q0, q1) <= tol_pos) {
-      extrapolate(m, t);
-      d.project_held(t, q0, q1, tol_pos, tol_vel);  // the velocity rows' new rate
-      return;
-    }
     d.project_held(t, q0, q1, tol_pos, tol_vel);
+    if (settle_pass(d, t, q0, q1) <= tol_pos) return;
   }
   std::ostringstream w;
   w << "quasi-steady elements of '" << m.name << "': their lengths do not settle at t = " << fmt(t)

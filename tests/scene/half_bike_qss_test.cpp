@@ -105,4 +105,41 @@ TEST(HalfBikeQss, ScenarioOneRunsThroughItsTorqueStepsCloseToTheFullModel) {
   EXPECT_LT(da_away, 1e-4);
 }
 
+// Scenario 2 (triangular engine torque up to 50 N m) at k_chain 1e4, the first 3 s: the shaft
+// reaches ~1300 rad/s and the chain's tension ~650 N. The held rates were the secant of the held
+// lengths over the last step, the velocities projected on them while T depends on the velocities
+// (the bearings' damping reflected along the span, ~1 N s/m): a loop gain ~ c / (k h) above 1 at
+// dopri5's steps (~3e-5 s), and the run stopped at 2.58 s. Now the rates are the derivative of the
+// equilibrium along the motion. Against the full model (fidelity unilateral, cvode_bdf) at the same
+// k: measured (printed) wheel speed WW rad/s of WWMAX, arm angle AA rad; bounds: 1e-3 of the
+// wheel's top speed and 10 % of the arm's swing.
+TEST(HalfBikeQss, ScenarioTwoFollowsTheFullModelAtTheSameChainStiffness) {
+  const std::vector<ParameterOverride> set = {{"scenario", "2"}, {"k_chain", "1e4"}};
+  const Scene qs = load_scene(std::string(MO2D_TEST_DATA_DIR) + "/half_bike_qss.yaml", set);
+  const Model mq = build_scene_model(qs);
+  ForwardOptions oq = forward_options(qs, mq);
+  oq.t1 = 3, oq.samples = 301;
+  const Trajectory q = forward_dynamics(mq, initial_state(qs, mq), oq);
+  const Scene fs = load_scene(std::string(MO2D_MECHANISMS_DIR) + "/half_bike.yaml", set);
+  const Model mf = build_scene_model(fs);
+  ForwardOptions of = forward_options(fs, mf);
+  of.t1 = 3, of.samples = 301;
+  const Trajectory f = forward_dynamics(mf, initial_state(fs, mf), of);
+  ASSERT_EQ(q.time.size(), f.time.size());
+  const int wq = q.rate_column("wheel.w"), wf = f.rate_column("wheel.w");
+  double dw = 0, da = 0, w_max = 0, a_max = 0;
+  for (Eigen::Index i = 0; i < q.time.size(); ++i) {
+    dw = std::max(dw, std::abs(q.q1(i, wq) - f.q1(i, wf)));
+    da = std::max(da, std::abs(arm_angle(q, i) - arm_angle(f, i)));
+    w_max = std::max(w_max, std::abs(f.q1(i, wf)));
+    a_max = std::max(a_max, std::abs(arm_angle(f, i)));
+  }
+  std::printf(
+      "QSS half-bike, scenario 2 to 3 s, against the full model at k_chain 1e4: wheel speed %.3g "
+      "rad/s (of %.4g), arm angle %.3g rad (of %.3g); CPU %.2f s (full %.2f s)\n",
+      dw, w_max, da, a_max, q.stats.cpu_seconds, f.stats.cpu_seconds);
+  EXPECT_LT(dw, 1e-3 * w_max);
+  EXPECT_LT(da, 0.1 * a_max);
+}
+
 }  // namespace mo2d::half_bike_qss_test
