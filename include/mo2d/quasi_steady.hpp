@@ -12,9 +12,10 @@
 // point L = L_law(T(q(L))) at every projection (settle_quasi_steady): project on the constraints
 // with the held lengths, evaluate T, move the held lengths, until they move by less than the
 // projection's tolerance (the iteration contracts by (dT/dl) / k per pass). Between projections
-// the row holds L extrapolated linearly from the last two settled lengths, so that the state moves
-// with the quasi-steady manifold (its rate the slow manifold's, z2 = dT/dt, not the thesis's
-// z2 = 0, which a state in positions and velocities cannot follow without a jump every step).
+// the row holds L extrapolated linearly with the derivative of the equilibrium length along the
+// motion at the last projection (Tdot / k), so that the state moves with the quasi-steady manifold
+// (its rate the slow manifold's, z2 = dT/dt, not the thesis's z2 = 0, which a state in positions
+// and velocities cannot follow without a jump every step).
 // The same holds for a torsional spring (its cell the angle a from rest, held where the torque
 // law at zero rate gives the row's torque tau: a = -tau / k when linear) and for a quasi-steady
 // chain (the taut span's length rest + T / k; the idle span's cell waits at its rest length).
@@ -32,16 +33,14 @@ namespace mo2d {
 struct ForwardData;
 
 // The length a quasi-steady spring's row holds, L(t) = length + rate (t - t0): the length settled
-// at the last projection of a forward run (t0) and its rate since the settling before (prev_*;
-// prev_t NaN: none yet). ReducedSpring::held_length points at `length`, the first member (the
-// cell is shared by the row's psi and the forward run; standard layout, so the pointer converts
-// back: held_of).
+// at the last projection of a forward run (t0) and its rate there, the derivative of the
+// equilibrium length along the motion (src/forward/quasi_steady.cpp, rates_along_motion).
+// ReducedSpring::held_length points at `length`, the first member (the cell is shared by the
+// row's psi and the forward run; standard layout, so the pointer converts back: held_of).
 struct HeldLength {
-  double length = 0;       // m, settled at the last projection (at t0)
-  double rate = 0;         // m/s, since the settling before
-  double t0 = 0;           // s, the time of the last settling
-  double prev_length = 0;  // m, the length settled before (for the rate)
-  double prev_t = NAN;     // s, its time; NaN: no settling yet
+  double length = 0;  // m, settled at the last projection (at t0)
+  double rate = 0;    // m/s, d/dt of the equilibrium length there
+  double t0 = 0;      // s, the time of the last settling
   // Whether a forward run holds the cell (QuasiSteadyRun): two runs at once on one Model (or on
   // copies, which share the cell) would move each other's lengths.
   std::atomic<bool> in_use{false};
@@ -96,19 +95,16 @@ class QuasiSteadyRun {
   bool owns_ = false, legs_ = false;
 };
 
-// The values of m's held cells (their length, rate, t0, prev_length, prev_t) at an accepted
-// state of a forward run. Every projection moves the cells, also those of a step that is then
-// rejected, of the secant tries that locate an event and of the steps to an output time inside
-// the step: the explicit drivers put the accepted state's values back before each such try
-// (restore_held), so that a cell's rate is the secant over the step from the accepted state and
-// not over whatever was projected last (a later time, or 1e-13 s away at an event's bracket).
-using HeldValues = std::vector<std::array<double, 5>>;
+// The values of m's held cells (their length, rate, t0) at an accepted state of a forward run.
+// Every projection moves the cells, also those of a step that is then rejected, of the secant
+// tries that locate an event and of the steps to an output time inside the step: the explicit
+// drivers put the accepted state's values back before each such try (restore_held), so that the
+// tries' rows hold the accepted state's L(t) and not whatever was projected last.
+using HeldValues = std::vector<std::array<double, 3>>;
 HeldValues save_held(const Model& m);
 void restore_held(const Model& m, const HeldValues& v);
-// Every held cell of m at its value at t with rate 0 and no history, so that the next settling
-// starts the rate from 0 again (the span switching at an event: the held values jump with the
-// mode, and a secant over the jump, or from the event to the next leg's start, which is moved onto
-// the output grid by up to 1e-9 of its spacing, is meaningless).
+// Every held cell of m at its value at t with rate 0 (the span switching at an event: the held
+// values jump with the mode; the next leg's start settles them and their rates afresh).
 void hold_still(const Model& m, double t);
 // A quasi-steady chain's taut span (its cells held still by the switching) released to its rest
 // length (the held length at T = 0) when its tension reaches 0: where T jumps through 0 with the

@@ -386,13 +386,7 @@ class RkDriver {
     VectorXd y_try(n_), y_best = y_hi;
     double t_best = t + h;
     HeldValues held_best = held_end_;  // the cells of the best try (the step's end: y_hi)
-    // Quasi-steady cells: the tries settle them without a rate (prev_t NaN: rate 0 from the try's
-    // end). At a jump of the loads (a torque step that flips the condition) the secant since the
-    // step's start is the jump of the held length over the bracket, up to 1e13 times it, and the
-    // located state's velocities would be projected on it.
-    HeldValues held_from = held_start_;
-    for (std::array<double, 5>& v : held_start_) v[4] = std::numeric_limits<double>::quiet_NaN();
-    int kept = 0;  // -1: lo moved last, +1: hi moved last
+    int kept = 0;                      // -1: lo moved last, +1: hi moved last
     bool bisect = false;
     for (int it = 0; it < 120; ++it) {
       const double width = hi - lo;
@@ -418,14 +412,12 @@ class RkDriver {
     }
     d_.stats.stopped_by_event = true;
     d_.stats.t_end = t_best;
-    // output times the step passed before the event (a free step of an embedded pair; their
-    // cells without a rate too: one may be past the jump, e.g. an output time on a torque step)
+    // output times the step passed before the event (a free step of an embedded pair)
     for (; k < o_.samples; ++k) {
       const double t_out = o_.t0 + (o_.t1 - o_.t0) * k / (o_.samples - 1);
       if (!(t_out < t_best)) break;
       record_interpolated(rec, t, y, t_best, y_best, t_out);
     }
-    held_start_.swap(held_from);
     if (held_) restore_held(m_, held_best);  // the run goes on from the located state
     record(rec, t_best, y_best);
   }

@@ -120,8 +120,7 @@ std::string held_name(const Held& e) {
 
 void reset_cell(HeldLength& h, double rest) {
   h.length = rest;
-  h.rate = h.t0 = h.prev_length = 0;
-  h.prev_t = NAN;
+  h.rate = h.t0 = 0;
 }
 
 // The reaction column of a chain's taut span ("name.upper.tension" or "name.lower.tension").
@@ -199,7 +198,7 @@ HeldValues save_held(const Model& m) {
   HeldValues v;
   for (const Held& e : held_cells(m)) {
     const HeldLength& h = *e.h;
-    v.push_back({h.length, h.rate, h.t0, h.prev_length, h.prev_t});
+    v.push_back({h.length, h.rate, h.t0});
   }
   return v;
 }
@@ -209,25 +208,24 @@ void restore_held(const Model& m, const HeldValues& v) {
   for (const Held& e : held_cells(m)) {
     if (i >= v.size()) break;
     HeldLength& h = *e.h;
-    const std::array<double, 5>& x = v[i++];
-    h.length = x[0], h.rate = x[1], h.t0 = x[2], h.prev_length = x[3], h.prev_t = x[4];
+    const std::array<double, 3>& x = v[i++];
+    h.length = x[0], h.rate = x[1], h.t0 = x[2];
   }
 }
 
 void hold_still(const Model& m, double t) {
   for (const Held& e : held_cells(m)) {
     HeldLength& h = *e.h;
-    h.length = h.prev_length = h.at(t);
+    h.length = h.at(t);
     h.rate = 0;
     h.t0 = t;
-    h.prev_t = NAN;  // no history: the next settling starts the rate from 0 again
   }
 }
 
 double release_span(const ChainLoad& c, int span, double rest) {
   HeldLength& h = held_of(c, span);
   const double stretch = h.length - rest;
-  h.length = h.prev_length = rest;
+  h.length = rest;
   return stretch;
 }
 
