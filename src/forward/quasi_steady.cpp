@@ -289,13 +289,15 @@ void rates_along_motion(ForwardData& d, double t, const Eigen::VectorXd& q0,
   size_t i = 0;
   for (const Held& e : held_cells(m)) {
     HeldLength& h = *e.h;
-    const double fwd = (side[0][i] - L[i]) / kRateStep, bwd = (L[i] - side[1][i]) / kRateStep;
+    double fwd = (side[0][i] - L[i]) / kRateStep, bwd = (L[i] - side[1][i]) / kRateStep;
     ++i;
+    if (!std::isfinite(bwd)) bwd = fwd;  // a load not finite before the start (sqrt(t) at t0 = 0)
+    if (!std::isfinite(fwd)) fwd = bwd;
     if (!e.active) {
       reset_cell(h, e.rest);
       continue;
     }
-    h.rate = fwd * bwd <= 0 ? 0.0 : std::abs(fwd) < std::abs(bwd) ? fwd : bwd;
+    h.rate = !(fwd * bwd > 0) ? 0.0 : std::abs(fwd) < std::abs(bwd) ? fwd : bwd;
     h.t0 = t;
   }
 }
