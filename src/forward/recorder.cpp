@@ -15,12 +15,14 @@ namespace mo2d::detail {
 
 namespace {
 
-// q1^T (M a - f - B u): the power of the constraint forces -A^T lambda
+// q1^T (M a - f - B u - Q_friction): the power of the constraint forces -A^T lambda (the joint
+// friction's generalized force is not in f: its power q1^T Q_friction is friction_power)
 double constraint_power(ForwardData& d, const VectorXd& q1) {
   d.mass_times(d.a, d.tmp1);
   d.tmp1 -= d.f;
   d.tmp1 -= d.Bu;
-  return q1.dot(d.tmp1);
+  const double friction = d.m.frictions.empty() ? 0.0 : friction_power(d.m, d.friction, q1);
+  return q1.dot(d.tmp1) - friction;
 }
 
 }  // namespace
