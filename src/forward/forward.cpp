@@ -116,23 +116,6 @@ double kinetic_energy(const Model& m, const VectorXd& q1) {
   return 0.5 * q1.dot(Mq);
 }
 
-VectorXd energy_balance(const Trajectory& r) {
-  if (!r.has_energies())
-    throw Error("energy balance: the trajectory has no energies (an inverse-dynamics run)",
-                "energies");
-  const Eigen::Index n = r.time.size();
-  if (n == 0) return VectorXd();
-  auto or_zero = [n](const VectorXd& v) { return v.size() == n ? v : VectorXd(VectorXd::Zero(n)); };
-  const VectorXd e = r.kinetic + r.potential;
-  return e.array() - e[0] - or_zero(r.input_work).array() - or_zero(r.load_work).array() -
-         or_zero(r.constraint_work).array() + or_zero(r.dissipated).array();
-}
-
-double energy_balance_error(const Trajectory& r) {
-  const VectorXd b = energy_balance(r);
-  return b.size() ? b.cwiseAbs().maxCoeff() : 0.0;
-}
-
 namespace {
 
 // The given velocities cannot be imposed together at this configuration. Either the configuration
@@ -355,6 +338,7 @@ Trajectory forward_dynamics(const Model& m, const State& initial, const ForwardO
     Trajectory r = detail::forward_chain_switching(m, initial, o);
     r.stats.integrator = to_string(o.integrator);
     r.stats.method = choice.reason;
+    detail::check_energy_balance(m, r);
     return r;
   }
   ForwardData d(m, o);
@@ -409,6 +393,7 @@ Trajectory forward_dynamics(const Model& m, const State& initial, const ForwardO
   r.reactions.conservativeResize(used, Eigen::NoChange);
   r.stats = d.stats;
   detail::reduced_spring_slack(m, r, r.stats.warnings);
+  detail::check_energy_balance(m, r);
   return r;
 }
 

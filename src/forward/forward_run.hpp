@@ -50,6 +50,8 @@ struct Recorder {
 
 // Throws Error naming the first non-finite value of recorded sample k and its time (forward.cpp).
 void check_finite_sample(const Model& m, const Trajectory& r, int k);
+// A warning in r.stats if the run's energy balance is off by more than 1 % of its energy scale.
+void check_energy_balance(const Model& m, Trajectory& r);
 
 // Integrator drivers: integrate from s0 to o.t1, recording every output time.
 void run_explicit_rk(const Model& m, ForwardData& d, const State& s0, const ForwardOptions& o,
