@@ -236,20 +236,18 @@ std::vector<CompliantElement> fidelity_report(const Model& m, const VectorXd& q0
   for (const SpringLoad& s : m.springs) out.push_back(spring_element(m, s, a, q0, q1, t));
   for (const TorsionalLoad& l : m.torsional_springs)
     out.push_back(torsional_element(m, l, a, q0, q1, t));
-  for (const ReducedSpring& r : m.reduced_springs) {  // its own mode: its length freed
+  // a reduced element: its own mode, its row freed
+  auto add_reduced = [&](const auto& r, bool held, const auto& element) {
     const Allowed fa = allowed_motion(m, q0, t, m.constraints[r.constraint].row1);
-    CompliantElement c = spring_element(m, r.spring, fa, q0, q1, t);
+    CompliantElement c = element(m, r.spring, fa, q0, q1, t);
     c.reduced = true;
-    c.reduction = r.held_length ? "reduce: quasi_steady" : "reduce: constraint";
+    c.reduction = held ? "reduce: quasi_steady" : "reduce: constraint";
     out.push_back(std::move(c));
-  }
-  for (const ReducedTorsional& r : m.reduced_torsional) {  // its own mode: its angle freed
-    const Allowed fa = allowed_motion(m, q0, t, m.constraints[r.constraint].row1);
-    CompliantElement c = torsional_element(m, r.spring, fa, q0, q1, t);
-    c.reduced = true;
-    c.reduction = r.held_angle ? "reduce: quasi_steady" : "reduce: constraint";
-    out.push_back(std::move(c));
-  }
+  };
+  for (const ReducedSpring& r : m.reduced_springs)
+    add_reduced(r, static_cast<bool>(r.held_length), spring_element);
+  for (const ReducedTorsional& r : m.reduced_torsional)
+    add_reduced(r, static_cast<bool>(r.held_angle), torsional_element);
   for (const ChainLoad& c : m.chains) {  // a reduced chain's mode: its taut span's row freed
     const bool row = c.constraint >= 0 && m.constraints[c.constraint].nrow1 > 0;
     add_chain_spans(m, c, row ? allowed_motion(m, q0, t, m.constraints[c.constraint].row1) : a, q0,
