@@ -75,8 +75,16 @@ Eigen::VectorXd signal_values(const Trajectory& r, const Signal& s) {
   if (s.angle) {
     const Eigen::VectorXd x = column(r, s.terms.at(0).column), y = column(r, s.terms.at(1).column);
     Eigen::VectorXd a(x.size());
+    // measured from the axis nearest the first sample's direction (the same for every run of a
+    // scene), so that a start on atan2's cut (an arm along -x: y = +0 in one run, -4e-12 in
+    // another) cannot put two runs' unwrapped angles 2 pi apart
+    const double ux = x.size() == 0 ? 1.0 : x[0] - s.x0, uy = x.size() == 0 ? 0.0 : y[0] - s.y0;
+    const double axis = std::abs(ux) >= std::abs(uy) ? (ux >= 0 ? 0.0 : std::numbers::pi)
+                                                     : (uy >= 0 ? 0.5 : -0.5) * std::numbers::pi;
+    const double ca = std::cos(axis), sa = std::sin(axis);
     for (Eigen::Index i = 0; i < x.size(); ++i) {
-      a[i] = std::atan2(y[i] - s.y0, x[i] - s.x0);
+      const double dx = x[i] - s.x0, dy = y[i] - s.y0;
+      a[i] = axis + std::atan2(ca * dy - sa * dx, ca * dx + sa * dy);
       if (i > 0)
         a[i] -= 2 * std::numbers::pi * std::round((a[i] - a[i - 1]) / (2 * std::numbers::pi));
     }
