@@ -62,6 +62,16 @@ const char* fidelity_name(const ChainLoad& c) {
   return c.held[0] ? "quasi_steady" : "inextensible";
 }
 
+// A span settled short of its rest length (under the T < 0 of a jump of the loads) and then put
+// back at it: its bodies moved by |stretch| and back within the instant (docs/reduction.md,
+// "Speed against error": the half-bike's swing arm kicked at the brake step).
+std::string short_span_note(double stretch) {
+  return "; it had been settled " + chain_log_number(-stretch) +
+         " m short of its rest length past the jump and its bodies moved back by as much: the "
+         "quasi-steady chain is not accurate across this jump (fidelity unilateral or "
+         "inextensible is)";
+}
+
 struct Lengths {
   double gap[2];  // rest - l of each span (>= 0: not longer than its rest length)
 };
@@ -395,7 +405,8 @@ void Switcher::switch_at(State& s) {
                         " span released from " + num(stretch) +
                         " m beyond its rest length (tension " + num(r[md.tension[which]]) +
                         " N) to it at t = " + num(s.t) + " s: impulse " + num(P) +
-                        " N s, kinetic energy lost " + num(off_[kDissipated] - e0) + " J");
+                        " N s, kinetic energy lost " + num(off_[kDissipated] - e0) + " J" +
+                        (stretch < 0 ? short_span_note(stretch) : std::string()));
     }
     spans_[which] = -1;
     const Lengths L = lengths(m_, c, s.q0, s.q1, s.t);

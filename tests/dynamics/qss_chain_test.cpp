@@ -143,6 +143,12 @@ TEST(QssChain, TorqueStepReleasesTheSpanAndTheLowerEngagesAtTheClosedFormTime) {
   const ChainValue v = value_at(m, r, 49);  // t = 0.49 s
   EXPECT_NEAR(v.upper_length, m.chains[0].rest_upper + T / k, 1e-10);
   EXPECT_NEAR(time_of(r, "upper span released"), ts, 1e-9);
+  // past the step the span was settled T / k short of its rest length (T = -tau0 / r_a): said
+  int short_lines = 0;
+  for (const std::string& w : r.stats.warnings)
+    short_lines += w.find("upper span released") != std::string::npos &&
+                   w.find("short of its rest length") != std::string::npos;
+  EXPECT_EQ(short_lines, 1);
   EXPECT_NEAR(time_of(r, "slack from"), ts, 1e-9);
   const double te = ts + std::sqrt(2 * Ia * delta / (ra * tau0));
   const double t_engage = time_of(r, "lower span reaches its rest length");
