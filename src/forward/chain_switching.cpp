@@ -261,7 +261,7 @@ Trajectory Switcher::leg(Mode& md, const State& s, double t1, int samples) {
   o.stop_when = [this, &md](double t, const VectorXd& q0, const VectorXd& q1) {
     return event(md, t, q0, q1);
   };
-  return forward_dynamics(md.model, s, o);
+  return forward_run(md.model, s, o);
 }
 
 // The tension of chain k's span in `modes` at s (its mode's least-squares multiplier).

@@ -319,7 +319,8 @@ void check_forward_options(const Model& m, const ForwardOptions& o) {
                forward_memory_bytes(m, o), o.max_memory, model_sizes(m), "max_memory");
 }
 
-Trajectory forward_dynamics(const Model& m, const State& initial, const ForwardOptions& options) {
+Trajectory detail::forward_run(const Model& m, const State& initial,
+                               const ForwardOptions& options) {
   check_forward_options(m, options_for_accuracy(m, options));
   if (m.n1 == 0)  // nothing to integrate (a scene without bodies, or every body fixed)
     throw Error("forward dynamics of '" + m.name +
@@ -338,7 +339,6 @@ Trajectory forward_dynamics(const Model& m, const State& initial, const ForwardO
     Trajectory r = detail::forward_chain_switching(m, initial, o);
     r.stats.integrator = to_string(o.integrator);
     r.stats.method = choice.reason;
-    detail::check_energy_balance(m, r);
     return r;
   }
   ForwardData d(m, o);
@@ -393,7 +393,12 @@ Trajectory forward_dynamics(const Model& m, const State& initial, const ForwardO
   r.reactions.conservativeResize(used, Eigen::NoChange);
   r.stats = d.stats;
   detail::reduced_spring_slack(m, r, r.stats.warnings);
-  detail::check_energy_balance(m, r);
+  return r;
+}
+
+Trajectory forward_dynamics(const Model& m, const State& initial, const ForwardOptions& options) {
+  Trajectory r = detail::forward_run(m, initial, options);
+  detail::check_energy_balance(m, r);  // of the whole run (a switching run's legs: forward_run)
   return r;
 }
 

@@ -52,6 +52,9 @@ struct Recorder {
 void check_finite_sample(const Model& m, const Trajectory& r, int k);
 // A warning in r.stats if the run's energy balance is off by more than 1 % of its energy scale.
 void check_energy_balance(const Model& m, Trajectory& r);
+// forward_dynamics without the check of the energy balance: a leg of the span switching, whose
+// run checks the balance of all its legs together.
+Trajectory forward_run(const Model& m, const State& initial, const ForwardOptions& options);
 
 // Integrator drivers: integrate from s0 to o.t1, recording every output time.
 void run_explicit_rk(const Model& m, ForwardData& d, const State& s0, const ForwardOptions& o,
