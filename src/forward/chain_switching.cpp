@@ -228,10 +228,10 @@ void Switcher::check_both_taut(const Model& mm, const Trajectory& r) {
     if (sp < 0 || watch_[k]) continue;
     // a quasi-steady span past a jump of its tension through 0 is at rest + T / k, T < 0 (the
     // other span longer by -T / k) until released
-    const int T =
+    const int tension =
         chain(k).held[sp] ? r.reaction(chain(k).name + "." + kSpanName[sp] + ".tension") : -1;
     for (Eigen::Index i = 0; i < r.time.size(); ++i) {
-      if (T >= 0 && r.reactions(i, T) < 0) continue;
+      if (tension >= 0 && r.reactions(i, tension) < 0) continue;
       const Lengths L =
           lengths(mm, chain(k), r.q0.row(i).transpose(), r.q1.row(i).transpose(), r.time[i]);
       if (L.gap[1 - sp] < -1e-6 * rest(chain(k), 1 - sp)) both_taut(k, r.time[i]);
@@ -482,7 +482,8 @@ Trajectory forward_chain_switching(const Model& m, const State& initial, const F
       throw Error("chain '" + c.name + "' (" + fidelity_name(c) + "): the integrator " +
                       to_string(o.integrator) +
                       " does not project on the constraints, and the span's length must be held "
-                      "there: use cvode_bdf, dopri5, erk6, erk8 or rk4",
+                      "there: use " +
+                      (c.held[0] ? "" : "cvode_bdf, ") + "dopri5, erk6, erk8 or rk4",
                   c.name);
   if (o.stop_when)
     throw Error("forward dynamics of '" + m.name +

@@ -269,4 +269,24 @@ TEST(QssChain, StiffUnilateralChainForceTendsToTheQssTensionAsOneOverK) {
   }
 }
 
+// An integrator that does not project is refused by name; the message offers only the explicit
+// methods, as quasi-steady elements refuse cvode_bdf (the inextensible chain's offers it too).
+TEST(QssChain, IntegratorsThatDoNotProjectAreRefusedWithTheMethodsThatWork) {
+  const Model m =
+      build_model(flywheels([](double) { return tau0; }, ChainFidelity::quasi_steady, 1e5));
+  for (Integrator i : {Integrator::cvode_adams, Integrator::baumgarte}) {
+    ForwardOptions o = options(0.1, 3);
+    o.integrator = i;
+    try {
+      forward_dynamics(m, at_rest(m), o);
+      ADD_FAILURE() << to_string(i) << " ran";
+    } catch (const Error& e) {
+      const std::string w = e.what();
+      EXPECT_NE(w.find("chain 'chain' (quasi_steady)"), std::string::npos) << w;
+      EXPECT_NE(w.find("use dopri5, erk6, erk8 or rk4"), std::string::npos) << w;
+      EXPECT_EQ(w.find("cvode_bdf"), std::string::npos) << w;
+    }
+  }
+}
+
 }  // namespace qss_chain_test
