@@ -88,14 +88,6 @@ bool StructuredSchur::covers(const MatrixXd& A) const {
   return in_pattern == (A.array() != 0).count();
 }
 
-void StructuredSchur::grow(const MatrixXd& A, const MatrixXd& Minv) {
-  std::vector<std::vector<int>> rows = rows_;
-  for (int i = 0; i < m_; ++i)
-    for (int j = 0; j < n_; ++j)
-      if (A(i, j) != 0) rows[i].push_back(j);
-  analyse(rows, Minv);
-}
-
 void StructuredSchur::grow(const std::vector<std::vector<int>>& extra, const MatrixXd& Minv) {
   std::vector<std::vector<int>> rows = rows_;
   for (int i = 0; i < m_; ++i) rows[i].insert(rows[i].end(), extra[i].begin(), extra[i].end());

@@ -26,11 +26,9 @@ class StructuredSchur {
   bool covers(const Eigen::MatrixXd& A) const;
   // (row, col) is an entry of the pattern analysed (O(1): a table of m1 x n1 flags)
   bool in_pattern(int row, int col) const { return in_[row + static_cast<std::size_t>(col) * m_]; }
-  // The pattern extended by the given entries of each row, analysed again (allocates).
+  // The pattern extended by the given entries of each row, analysed again (allocates; a model
+  // whose rows gain entries with the state).
   void grow(const std::vector<std::vector<int>>& extra, const Eigen::MatrixXd& Minv);
-  // The pattern extended by the nonzeros of A, analysed again (allocates; a model whose rows
-  // gain entries with the state).
-  void grow(const Eigen::MatrixXd& A, const Eigen::MatrixXd& Minv);
   // N (into row_scale), P and the Cholesky of G. Returns (min/max of L's diagonal)^2, the
   // conditioning estimate of N A in the mass metric; 0 where G is not positive definite.
   double factor(const Eigen::MatrixXd& A, const Eigen::VectorXd& col_scale,

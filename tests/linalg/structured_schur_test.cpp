@@ -164,7 +164,7 @@ TEST(StructuredSchur, RandomPatternsAndAGrownPattern) {
     detail::StructuredSchur schur;
     schur.analyse(pattern_of(A, true), Minv);
     ASSERT_FALSE(schur.covers(A));
-    schur.grow(A, Minv);
+    schur.grow(pattern_of(A), Minv);
     ASSERT_TRUE(schur.covers(A));
     VectorXd row_scale(m), r(m), a(n), lambda(m);
     const double ratio = schur.factor(A, d, row_scale);
