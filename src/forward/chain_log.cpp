@@ -7,6 +7,7 @@
 #include <cstdio>
 
 #include "output/trajectory_labels.hpp"
+#include "run/time_grid.hpp"
 
 namespace mo2d::detail {
 
@@ -89,7 +90,7 @@ void append_leg(Trajectory& out, int& filled, const Trajectory& r, const Forward
     for (size_t i = 0; i < r.reaction_labels.size(); ++i)
       if (r.reaction_labels[i] == out.reaction_labels[j]) col[j] = static_cast<int>(i);
   for (Eigen::Index i = 0; i < r.time.size() && filled < o.samples; ++i) {
-    const double t_k = o.t0 + (o.t1 - o.t0) * filled / (o.samples - 1);
+    const double t_k = sample_time(o.t0, o.t1, o.samples, filled);
     if (!(std::abs(r.time[i] - t_k) <= 1e-9 * h)) continue;
     const int k = filled++;
     out.time[k] = t_k;

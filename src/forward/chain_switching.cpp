@@ -46,6 +46,7 @@
 #include "mo2d/kinematics.hpp"
 #include "mo2d/quasi_steady.hpp"
 #include "output/trajectory_labels.hpp"
+#include "run/time_grid.hpp"
 
 namespace mo2d::detail {
 namespace {
@@ -155,7 +156,7 @@ class Switcher {
   double length_cond(const ChainLoad& c, const Lengths& L, int s) const {
     return (L.gap[s] + span_tol(c, s)) / rest(c, s);
   }
-  double grid(int k) const { return o_.t0 + (o_.t1 - o_.t0) * k / (o_.samples - 1); }
+  double grid(int k) const { return sample_time(o_.t0, o_.t1, o_.samples, k); }
   const ChainLoad& chain(size_t k) const { return m_.chains[chains_[k]]; }
   void note(size_t k, const std::string& line) {
     if (log_.listed(k)) out_.stats.warnings.push_back(line);

@@ -22,6 +22,7 @@
 #include "mo2d/jacobian.hpp"
 #include "mo2d/kinematics.hpp"
 #include "run/run_budget.hpp"
+#include "run/time_grid.hpp"
 
 namespace mo2d::detail {
 namespace {
@@ -325,7 +326,7 @@ void run_cvode(const Model& m, ForwardData& d, const State& s0, const ForwardOpt
   rec.record(o.t0, q0, q1, energies);
   double t = o.t0;
   for (int k = 1; k < o.samples; ++k) {
-    const double t_out = o.t0 + (o.t1 - o.t0) * k / (o.samples - 1);
+    const double t_out = sample_time(o.t0, o.t1, o.samples, k);
     check_flag(CVodeSetStopTime(mem, t_out), "CVodeSetStopTime", t);
     long taken = 0;  // max_steps bounds the whole run (CVODE's own limit is per call)
     CVodeGetNumSteps(mem, &taken);

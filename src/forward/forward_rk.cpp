@@ -32,6 +32,7 @@
 #include "mo2d/error.hpp"
 #include "mo2d/quasi_steady.hpp"
 #include "run/run_budget.hpp"
+#include "run/time_grid.hpp"
 
 namespace mo2d::detail {
 namespace {
@@ -82,7 +83,7 @@ class RkDriver {
     // adaptive: first step from the tolerance-free guess; the controller takes over from there
     double h = tab_.embedded ? std::min(1e-3, (o_.t1 - o_.t0) / 10) : o_.step;
     int k = 1;  // next output time
-    auto output_time = [&](int i) { return o_.t0 + (o_.t1 - o_.t0) * i / (o_.samples - 1); };
+    auto output_time = [&](int i) { return sample_time(o_.t0, o_.t1, o_.samples, i); };
     while (k < o_.samples) {
       const double t_out = output_time(k);
       double hh;
@@ -114,6 +115,11 @@ class RkDriver {
         record(rec, t_new, y_new);
         ++k;
       }
+      if (!(t_new > t))  // cannot happen on the grid of run/time_grid.hpp: never loop on it
+        throw Error("forward dynamics of '" + m_.name + "': no progress at t = " + fmt(t) +
+                        " s (step " + fmt(used) + " s, output time " + fmt(t_out) +
+                        " s): internal error, please report it",
+                    m_.name, t);
       t = t_new;
       y.swap(y_new);
       if (held_) restore_held(m_, held_end_), held_start_.swap(held_end_);
@@ -414,7 +420,7 @@ class RkDriver {
     d_.stats.t_end = t_best;
     // output times the step passed before the event (a free step of an embedded pair)
     for (; k < o_.samples; ++k) {
-      const double t_out = o_.t0 + (o_.t1 - o_.t0) * k / (o_.samples - 1);
+      const double t_out = sample_time(o_.t0, o_.t1, o_.samples, k);
       if (!(t_out < t_best)) break;
       record_interpolated(rec, t, y, t_best, y_best, t_out);
     }

@@ -23,6 +23,7 @@
 #include "run/cpu_time.hpp"
 #include "run/format.hpp"
 #include "run/run_budget.hpp"
+#include "run/time_grid.hpp"
 #include "run/user_code.hpp"
 
 namespace mo2d {
@@ -466,7 +467,7 @@ Trajectory inverse_dynamics(const Model& m, std::span<const Prescribed> prescrib
                             .hint = "use fewer samples",
                             .unit = "samples solved"});
   for (int k = 0; k < N; ++k) {
-    const double t = N == 1 ? options.t0 : options.t0 + (options.t1 - options.t0) * k / (N - 1);
+    const double t = detail::sample_time(options.t0, options.t1, N, k);
     budget.check(t, k, 0);
     inverse_dynamics_sample(m, d, t);
     r.time[k] = t;
