@@ -160,6 +160,18 @@ std::array<double, 2> chain_span_rates(const Model& m, const ChainLoad& c, const
 // m with each inextensible chain in the span mode spans[k] (k-th inextensible chain; 0 upper,
 // 1 lower, -1 slack: its row removed) and mode_fixed (src/model/inextensible_chains.cpp).
 Model chain_mode_model(const Model& m, const std::vector<int>& spans);
+// The positions q0 assembled (assemble(), tolerance tol) with each inextensible chain in the mode
+// of its span lengths there, once the rest of the mechanism is: spans[k] of the k-th -1 (slack:
+// both spans shorter than their rest lengths by more than 1e-9 of them), else 0 upper or 1 lower
+// (the span at or beyond its length; src/model/inextensible_chains.cpp).
+struct ChainStart {
+  Eigen::VectorXd q0;
+  std::vector<int> spans;
+};
+ChainStart chain_start(const Model& m, const Eigen::VectorXd& q0, double t,
+                       const std::vector<int>& fixed, double tol);
+// The tolerance of assembling q0 onto a span's row at an engagement, relative to m.scale.
+double span_assembly_tolerance(const Model& m, const Eigen::VectorXd& q0);
 // Sets beta0, the offsets (l = L at m.q0) and the default rest lengths (NaN: the initial L).
 void init_chain(const Model& m, ChainLoad& c);
 

@@ -17,6 +17,21 @@ std::string chain_log_number(double v) {
   return b;
 }
 
+// The fidelity a chain was given (a quasi-steady chain is compiled as inextensible, with cells).
+const char* chain_fidelity_name(const ChainLoad& c) {
+  return c.held[0] ? "quasi_steady" : "inextensible";
+}
+
+// A span settled short of its rest length (under the T < 0 of a jump of the loads) and then put
+// back at it: its bodies moved by |stretch| and back within the instant (docs/reduction.md,
+// "Speed against error": the half-bike's swing arm kicked at the brake step).
+std::string short_span_note(double stretch) {
+  return "; it had been settled " + chain_log_number(-stretch) +
+         " m short of its rest length past the jump and its bodies moved back by as much: the "
+         "quasi-steady chain is not accurate across this jump (fidelity unilateral or "
+         "inextensible is)";
+}
+
 void add_leg_stats(RunStats& a, const RunStats& b) {
   a.cpu_seconds += b.cpu_seconds;
   a.steps += b.steps;

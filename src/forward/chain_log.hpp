@@ -19,6 +19,14 @@ namespace mo2d::detail {
 // compared with closed forms to 1e-7 s).
 std::string chain_log_number(double v);
 
+// The fidelity a chain was given: "quasi_steady" (compiled as inextensible, with held cells) or
+// "inextensible".
+const char* chain_fidelity_name(const ChainLoad& c);
+
+// The end of the release line of a quasi-steady span settled `stretch` (< 0) short of its rest
+// length past a jump of the loads and put back at it.
+std::string short_span_note(double stretch);
+
 // A leg's statistics and warnings added to the run's (its t_end the leg's).
 void add_leg_stats(RunStats& run, const RunStats& leg);
 

@@ -27,11 +27,12 @@
 // rtol: none on fixed centres) are counted, a closing line per chain. Both spans taut at once,
 // an initial span longer than its rest length, and switches that chatter (more than kChatter at
 // one instant) are errors naming the chain and the time. The recorded samples are the output
-// grid's; the integrated energy terms carry over from segment to segment. A quasi-steady chain
-// (ChainLoad::held) switches alike, its taut span at rest + T / k (mo2d/quasi_steady.hpp): the
-// run holds the quasi-steady cells across its legs (QuasiSteadyRun with legs), reset at its end;
-// its span whose tension reaches 0 is put at its rest length first (release_span;
-// docs/reduction.md).
+// grid's, one at a switch's instant the new mode's (the loads there are the new ones: the old
+// mode's tension past a step of them pushes); the energy terms carry over from leg to leg. A
+// quasi-steady chain (ChainLoad::held) switches alike, its taut span at rest + T / k
+// (mo2d/quasi_steady.hpp): the run holds the quasi-steady cells across its legs (QuasiSteadyRun
+// with legs), reset at its end; its span whose tension reaches 0 is put at its rest length first
+// (release_span; docs/reduction.md).
 #include <Eigen/LU>
 #include <algorithm>
 #include <chrono>
@@ -57,21 +58,6 @@ constexpr int kMaxSwitches = 10000;  // switches in a run before it is refused
 const char* const kSpanName[2] = {"upper", "lower"};
 
 const auto& num = chain_log_number;  // 10 significant digits
-
-// The fidelity a chain was given (a quasi-steady chain is compiled as inextensible, with cells).
-const char* fidelity_name(const ChainLoad& c) {
-  return c.held[0] ? "quasi_steady" : "inextensible";
-}
-
-// A span settled short of its rest length (under the T < 0 of a jump of the loads) and then put
-// back at it: its bodies moved by |stretch| and back within the instant (docs/reduction.md,
-// "Speed against error": the half-bike's swing arm kicked at the brake step).
-std::string short_span_note(double stretch) {
-  return "; it had been settled " + chain_log_number(-stretch) +
-         " m short of its rest length past the jump and its bodies moved back by as much: the "
-         "quasi-steady chain is not accurate across this jump (fidelity unilateral or "
-         "inextensible is)";
-}
 
 struct Lengths {
   double gap[2];  // rest - l of each span (>= 0: not longer than its rest length)
@@ -143,6 +129,9 @@ class Switcher {
   int filled_ = 0;
   double off_[kEnergyTerms] = {0, 0, 0, 0};
   int same_instant_ = 0, switches_ = 0;
+  // a switch since the last leg: a sample written at its instant holds the old mode's values
+  // (the loads there are the new ones: a taut span's tension < 0) and is written again
+  bool switched_ = false;
   double last_switch_ = -1e300, slack_since_ = 0;
   std::chrono::steady_clock::time_point started_ = std::chrono::steady_clock::now();
 
@@ -174,6 +163,7 @@ class Switcher {
   double impact(State& s, const std::vector<int>& modes, size_t k);
   double tension_in(const std::vector<int>& modes, size_t k, const State& s);
   void start_segment(const State& s);
+  void rewrite_last(const State& s);
   void check_both_taut(const Model& mm, const Trajectory& r);
   [[noreturn]] void both_taut(size_t k, double t) const {
     const int sp = spans_[k];
@@ -181,11 +171,11 @@ class Switcher {
          std::string("both spans taut (the ") + kSpanName[1 - sp] +
              " span reaches its rest length while the " + kSpanName[sp] +
              " span pulls: the centre distance would be locked); fidelity " +
-             fidelity_name(chain(k)) +
+             chain_fidelity_name(chain(k)) +
              " holds one span at a time: use fidelity unilateral or a longer rest length");
   }
   [[noreturn]] void fail(size_t k, double t, const std::string& what) const {
-    throw Error("chain '" + chain(k).name + "' (" + fidelity_name(chain(k)) + "): " + what +
+    throw Error("chain '" + chain(k).name + "' (" + chain_fidelity_name(chain(k)) + "): " + what +
                     " at t = " + fmt(t) + " s",
                 chain(k).name, t);
   }
@@ -271,24 +261,12 @@ double Switcher::tension_in(const std::vector<int>& modes, size_t k, const State
   return md.reactions(s.t, s.q0, s.q1)[md.tension[k]];
 }
 
-// The tolerance of an engagement's assembly, relative to m.scale: 1e-13, or above the round-off of
-// the span lengths, which carry r theta of the unwrapped sprocket angles (the QSS half-bike's
-// scenario 2 turns the shaft by ~1e4 rad: Newton stalled at a residual of 2.5e-13 m).
-double impact_tolerance(const Model& m, const VectorXd& q0) {
-  double wrapped = 0;  // m
-  for (const ChainLoad& c : m.chains)
-    for (const auto& [var, r] :
-         {std::pair{c.theta_a, c.radius_a}, std::pair{c.theta_b, c.radius_b}})
-      if (var >= 0) wrapped += r * std::abs(q0[var]);
-  return std::max(1e-13, 16 * std::numeric_limits<double>::epsilon() * wrapped / m.scale);
-}
-
 // A perfectly inelastic engagement: s's positions put on the rows of `modes`, its velocities
 // projected on them in the mass metric; returns chain k's impulse (N s) and adds the kinetic
 // energy lost to the dissipated energy.
 double Switcher::impact(State& s, const std::vector<int>& modes, size_t k) {
   const Model mm = chain_mode_model(m_, modes);
-  s.q0 = assemble(mm, s.q0, s.t, {}, impact_tolerance(mm, s.q0));
+  s.q0 = assemble(mm, s.q0, s.t, {}, span_assembly_tolerance(mm, s.q0));
   const int n = mm.n1, rows = mm.m1;
   MatrixXd K = MatrixXd::Zero(n + rows, n + rows);
   const MatrixXd M = mass_matrix(mm);
@@ -380,12 +358,13 @@ void Switcher::switch_at(State& s) {
   }
   const ChainLoad& c = chain(which);
   const int sp = spans_[which];
+  switched_ = true;
   if (s.t - last_switch_ <= 1e-12 * std::max(1.0, std::abs(s.t))) {
     if (++same_instant_ > kChatter)
       fail(which, s.t,
            "the span switching chatters (" + std::to_string(same_instant_) +
                " switches at one instant): the mechanism cannot be handled by fidelity " +
-               fidelity_name(c) + "; use fidelity unilateral");
+               chain_fidelity_name(c) + "; use fidelity unilateral");
   } else {
     same_instant_ = 0;
   }
@@ -425,6 +404,24 @@ void Switcher::switch_at(State& s) {
   engage(s, which, span, "reaches its rest length");
 }
 
+// A switch at the last output time (no leg follows): its sample again, in the new mode.
+void Switcher::rewrite_last(const State& s) {
+  Mode md(chain_mode_model(m_, spans_), inner_);
+  const VectorXd& r = md.reactions(s.t, s.q0, s.q1);
+  const Eigen::Index k = o_.samples - 1;
+  const std::vector<std::string> labels = md.model.reaction_labels();
+  out_.q0.row(k) = s.q0.transpose();
+  out_.q1.row(k) = s.q1.transpose();
+  out_.a1.row(k) = md.data.a.transpose();
+  out_.efforts.row(k) = md.data.u.transpose();
+  for (Eigen::Index j = 0; j < out_.reactions.cols(); ++j) {
+    const auto at = std::find(labels.begin(), labels.end(), out_.reaction_labels[j]);
+    out_.reactions(k, j) = at == labels.end() ? 0.0 : r[at - labels.begin()];
+  }
+  out_.kinetic[k] = kinetic_energy(m_, s.q1);
+  out_.dissipated[k] = off_[kDissipated];
+}
+
 Trajectory Switcher::run(const State& initial) {
   const int N = o_.samples;
   out_ = switching_trajectory(m_, N);
@@ -450,18 +447,23 @@ Trajectory Switcher::run(const State& initial) {
       r = leg(md, s, o_.t1, N - filled_);
     } else if (near(filled_ - 1)) {
       s.t = grid(filled_ - 1);
-      r = leg(md, s, o_.t1, N - filled_ + 1);
+      // a switch at this output time: its sample again, in the new mode (the old mode's tension
+      // there is the one past a step of the loads: the half-bike's -27.8 N at its brake step)
+      if (switched_) --filled_;
+      r = leg(md, s, o_.t1, N - filled_ + (switched_ ? 0 : 1));
     } else {
       r = leg(md, s, grid(filled_), 2);
     }
     check_both_taut(md.model, r);
     append_leg(out_, filled_, r, o_, off_);
+    switched_ = false;
     const Eigen::Index e = r.time.size() - 1;
     s.t = r.time[e];
     s.q0 = r.q0.row(e).transpose();
     s.q1 = r.q1.row(e).transpose();
     if (r.stats.stopped_by_event) switch_at(s);
   }
+  if (switched_) rewrite_last(s);
   std::vector<std::string> names;
   for (size_t k = 0; k < chains_.size(); ++k) names.push_back(chain(k).name);
   for (const std::string& w : log_.summary(names)) out_.stats.warnings.push_back(w);
@@ -480,7 +482,7 @@ Trajectory forward_chain_switching(const Model& m, const State& initial, const F
   for (const ChainLoad& c : m.chains)
     if (c.fidelity == ChainFidelity::inextensible &&
         (o.integrator == Integrator::cvode_adams || o.integrator == Integrator::baumgarte))
-      throw Error("chain '" + c.name + "' (" + fidelity_name(c) + "): the integrator " +
+      throw Error("chain '" + c.name + "' (" + chain_fidelity_name(c) + "): the integrator " +
                       to_string(o.integrator) +
                       " does not project on the constraints, and the span's length must be held "
                       "there: use " +

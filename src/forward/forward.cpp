@@ -8,8 +8,10 @@
 #include <algorithm>
 #include <cmath>
 #include <memory>
+#include <optional>
 #include <sstream>
 
+#include "dynamics/chain.hpp"
 #include "dynamics/slack.hpp"
 #include "forward/forward_run.hpp"
 #include "kinematics/sparse_kinematics.hpp"
@@ -225,7 +227,18 @@ State consistent_state(const Model& m, const InitialConditions& ic, double t0) {
   }
   State s;
   s.t = t0;
-  s.q0 = assemble(m, q0, t0, fixed, 1e-13);
+  // switching chains: assembled in the modes of their spans' lengths (a slack chain stays slack);
+  // the velocities with the taut spans' rows, a slack chain's upper span's (its rate 0: m.dof)
+  std::optional<Model> modes;
+  if (detail::switches_chains(m)) {
+    detail::ChainStart c = detail::chain_start(m, q0, t0, fixed, 1e-13);
+    s.q0 = std::move(c.q0);
+    for (int& k : c.spans) k = std::max(k, 0);
+    modes.emplace(detail::chain_mode_model(m, c.spans));
+  } else {
+    s.q0 = assemble(m, q0, t0, fixed, 1e-13);
+  }
+  const Model& vm = modes ? *modes : m;
   if (static_cast<int>(ic.velocities.size()) != m.dof) {
     std::string list;
     for (const auto& [l, v] : ic.velocities) list += (list.empty() ? "" : ", ") + l;
@@ -238,8 +251,8 @@ State consistent_state(const Model& m, const InitialConditions& ic, double t0) {
     if (!std::isfinite(value)) throw Error("initial velocity '" + label + "' is not finite", label);
     m.rate(label);  // an unknown label: its error, in the order given
   }
-  s.q1 = detail::sparse_kinematics(m) ? sparse_velocities(m, ic, s.q0, t0)
-                                      : dense_velocities(m, ic, s.q0, t0);
+  s.q1 = detail::sparse_kinematics(vm) ? sparse_velocities(vm, ic, s.q0, t0)
+                                       : dense_velocities(vm, ic, s.q0, t0);
   return s;
 }
 

@@ -2,6 +2,7 @@
 // data passed between them, in model/build_stages.hpp (one file per stage in src/model/).
 #include <set>
 
+#include "dynamics/chain.hpp"
 #include "mo2d/budget.hpp"
 #include "mo2d/error.hpp"
 #include "mo2d/kinematics.hpp"
@@ -20,7 +21,10 @@ void check_input_labels(const Model& m) {
 
 // Stage 8: holonomy and DOF; then (BuildOptions::assemble) the consistent initial configuration
 // from the given one `q0` and the check that no constraint is redundant.
-void assemble_model(Model& m, const Eigen::VectorXd& q0, const BuildOptions& options) {
+// chain_modes (stage 8b): the inextensible chains' rows only of the spans at their length (a chain
+// with slack in both spans stays slack: detail::chain_start); m's ranks are checked either way.
+void assemble_model(Model& m, const Eigen::VectorXd& q0, const BuildOptions& options,
+                    bool chain_modes = false) {
   m.q0 = q0;
   m.holonomic = true;
   for (const auto& c : m.constraints) {
@@ -34,7 +38,10 @@ void assemble_model(Model& m, const Eigen::VectorXd& q0, const BuildOptions& opt
                build_memory_bytes(m.n0, m.m0, m.n1, m.m1), options.max_memory, model_sizes(m),
                "max_memory");
   try {
-    m.q0 = assemble(m, q0, 0.0, {}, options.assembly_tolerance);
+    if (chain_modes)
+      m.q0 = detail::chain_start(m, q0, 0.0, {}, options.assembly_tolerance).q0;
+    else
+      m.q0 = assemble(m, q0, 0.0, {}, options.assembly_tolerance);
     check_constraint_ranks(m, m.q0, 0.0);
   } catch (const Error& e) {  // a build-time error: no run time
     throw Error(e.what(), e.element());
@@ -80,7 +87,7 @@ Model build_model(const System& system, const BuildOptions& options) {
   check_input_labels(m);
   assemble_model(m, numbering.q0, options);
   init_chains(m);
-  if (add_inextensible_chains(m)) assemble_model(m, m.q0, options);  // 8b. onto the spans' rows
+  if (add_inextensible_chains(m)) assemble_model(m, m.q0, options, true);  // 8b. the spans' rows
   m.sketch = std::move(sketch);
   complete_sketch_report(m);
   return m;

@@ -12,11 +12,18 @@
 // constraint's -A^T lambda: T = lambda, reported as the reaction "name.upper.tension" or
 // "name.lower.tension" (factor +1; the other span's reaction has factor 0, it is slack). One row
 // per chain in the built model (the upper span); chain_mode_model replaces it by the lower span's
-// or removes it (slack).
+// or removes it (slack). The assembly onto the spans' rows (chain_start): only of the spans at
+// their length; a chain whose spans are both shorter than their rest lengths starts slack
+// (assembled on the upper span's row, the half-bike's swing arm moved by -2.04e-3 rad to take up
+// its 0.5 mm of slack, and rang for 1 s).
 #include <algorithm>
+#include <cmath>
+#include <limits>
 
 #include "dynamics/chain.hpp"
+#include "mo2d/dynamics.hpp"
 #include "mo2d/error.hpp"
+#include "mo2d/kinematics.hpp"
 #include "mo2d/quasi_steady.hpp"
 #include "model/build_stages.hpp"
 #include "model/point_jets.hpp"
@@ -169,6 +176,42 @@ Model chain_mode_model(const Model& m, const std::vector<int>& spans) {
     build::set_factors(out, c);
   }
   return out;
+}
+
+// The tolerance of an engagement's assembly, relative to m.scale: 1e-13, or above the round-off of
+// the span lengths, which carry r theta of the unwrapped sprocket angles (the QSS half-bike's
+// scenario 2 turns the shaft by ~1e4 rad: Newton stalled at a residual of 2.5e-13 m).
+double span_assembly_tolerance(const Model& m, const VectorXd& q0) {
+  double wrapped = 0;  // m
+  for (const ChainLoad& c : m.chains)
+    for (const auto& [var, r] :
+         {std::pair{c.theta_a, c.radius_a}, std::pair{c.theta_b, c.radius_b}})
+      if (var >= 0) wrapped += r * std::abs(q0[var]);
+  return std::max(1e-13, 16 * std::numeric_limits<double>::epsilon() * wrapped / m.scale);
+}
+
+ChainStart chain_start(const Model& m, const VectorXd& q0, double t, const std::vector<int>& fixed,
+                       double tol) {
+  constexpr double kAtLength = 1e-9;  // a span within 1e-9 of its rest length is at it
+  std::vector<int> spans;
+  for (const ChainLoad& c : m.chains)
+    if (c.fidelity == ChainFidelity::inextensible) spans.push_back(-1);
+  // the rest of the mechanism first (every chain slack), then the spans at their length
+  VectorXd q = assemble(chain_mode_model(m, spans), q0, t, fixed, tol);
+  const VectorXd still = VectorXd::Zero(m.n1);
+  bool taut = false;
+  size_t k = 0;
+  for (const ChainLoad& c : m.chains) {
+    if (c.fidelity != ChainFidelity::inextensible) continue;
+    const ChainValue v = chain_value(m, c, q, still, t);
+    const double gap[2] = {(c.rest_upper - v.upper_length) / c.rest_upper,
+                           (c.rest_lower - v.lower_length) / c.rest_lower};
+    const int s = gap[1] < gap[0] ? 1 : 0;  // the span nearer its length (or beyond it)
+    if (gap[s] <= kAtLength) spans[k] = s, taut = true;
+    ++k;
+  }
+  if (taut) q = assemble(chain_mode_model(m, spans), q, t, fixed, tol);
+  return {q, spans};
 }
 
 }  // namespace mo2d::detail

@@ -41,7 +41,8 @@ BodyDef disc(const std::string& name, Vec2 c, double inertia) {
 
 // Two flywheels on ground axes 0.5 m apart, the drive torque `torque` on a, a chain.
 System flywheels(std::function<double(double)> torque, ChainFidelity f, double k = 0,
-                 double damping = 0, std::optional<double> rest_lower = {}, double bearing = 0) {
+                 double damping = 0, std::optional<double> rest_lower = {}, double bearing = 0,
+                 std::optional<double> rest_upper = {}) {
   System s("flywheels");
   s.add_ground_node("A", {0, 0});
   s.add_ground_node("B", {0.5, 0});
@@ -60,6 +61,7 @@ System flywheels(std::function<double(double)> torque, ChainFidelity f, double k
                .radius_b = rb,
                .stiffness = k,
                .damping = damping,
+               .rest_upper = rest_upper,
                .rest_lower = rest_lower,
                .fidelity = f});
   return s;
@@ -226,6 +228,66 @@ TEST(InextensibleChain, SlackIntervalAndInelasticEngagementAgainstTheClosedForm)
   // K + W_drive balanced with the impact's loss counted as dissipated
   EXPECT_LT(energy_balance_error(r), 1e-8);
   EXPECT_NEAR(r.dissipated[r.time.size() - 1], 0.5 * P * rate, 1e-6 * P * rate);
+}
+
+// A torque step at an output time (ts, the 51st of 101 samples; and the last of a run that ends
+// there): the sample there is the mode past the step, whose loads the sample's are: slack with a
+// dead zone delta, else the lower span pulling with the closed-form tension. It was the mode
+// before: the upper span pushing with -T (the half-bike's -1.56 N at 5 s and -27.8 N at 10 s
+// while the warnings said slack from there).
+TEST(InextensibleChain, TheSampleAtATorqueStepIsTheModePastTheStep) {
+  const double D = 0.5, L0 = std::sqrt(D * D - (ra - rb) * (ra - rb)), T = upper_tension(tau0);
+  for (double delta : {1e-3, 0.0}) {
+    const Model m = build_model(flywheels([](double t) { return t < ts ? tau0 : -tau0; },
+                                          ChainFidelity::inextensible, 0, 0, L0 + delta));
+    for (int samples : {101, 51}) {
+      if (delta == 0 && samples == 51) continue;  // the run's end at the step: with slack
+      SCOPED_TRACE("delta " + std::to_string(delta) + ", samples " + std::to_string(samples));
+      const Trajectory r = forward_dynamics(m, at_rest(m), options((samples - 1) * 0.01, samples));
+      const int Tu = r.reaction("chain.upper.tension"), Tl = r.reaction("chain.lower.tension");
+      ASSERT_EQ(r.time[50], ts);
+      EXPECT_NEAR(r.reactions(49, Tu), T, 1e-6 * T);  // before the step: the upper span pulls
+      EXPECT_EQ(r.reactions(50, Tu), 0);
+      EXPECT_NEAR(r.reactions(50, Tl), delta > 0 ? 0.0 : T, 1e-6 * T);
+      std::printf("delta %g, %d samples: at ts T_u %g N, T_l %g N (closed form 0, %g N)\n", delta,
+                  samples, r.reactions(50, Tu), r.reactions(50, Tl), delta > 0 ? 0.0 : T);
+    }
+  }
+}
+
+// A chain starts in the mode its span lengths give at the initial positions, where they are: both
+// spans with slack, slack; a span at its length (the other with slack), that span taut. The
+// build and the consistent state assembled the mechanism onto the upper span's row: the
+// sprockets turned to take up its slack (on the half-bike's swinging arm, the arm moved by
+// -2.04e-3 rad), and with only the lower span at its length that span was then delta too long
+// ("longer than its rest length in the initial state").
+TEST(InextensibleChain, StartsWhereItIsInTheModeOfItsSpanLengths) {
+  const double D = 0.5, L0 = std::sqrt(D * D - (ra - rb) * (ra - rb)), delta = 1e-3;
+  struct Case {
+    double upper, lower, torque;
+    const char* start;
+  };
+  for (const Case& c :
+       {Case{L0 + delta, L0 + delta, tau0, "slack"}, Case{L0, L0 + delta, tau0, "upper span taut"},
+        Case{L0 + delta, L0, -tau0, "lower span taut"}}) {
+    SCOPED_TRACE(c.start);
+    const double tau = c.torque;
+    try {
+      const Model m = build_model(flywheels(
+          [tau](double) { return tau; }, ChainFidelity::inextensible, 0, 0, c.lower, 0, c.upper));
+      const State s = at_rest(m);
+      for (const VectorXd& q0 : {m.q0, s.q0}) {
+        const ChainValue v = chain_value(m, m.chains[0], q0, s.q1, 0);
+        EXPECT_NEAR(v.upper_length, L0, 1e-12);
+        EXPECT_NEAR(v.lower_length, L0, 1e-12);
+      }
+      const Trajectory r = forward_dynamics(m, s, options(0.01, 2));
+      EXPECT_EQ(r.stats.warnings.at(0),
+                std::string("chain 'chain': ") + c.start + " at t = 0 s (start)");
+    } catch (const Error& e) {
+      ADD_FAILURE() << e.what();
+    }
+  }
 }
 
 // The torque reversing by a step at ts (+tau0 to -tau0), the lower span delta longer: the upper

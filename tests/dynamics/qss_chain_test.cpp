@@ -172,6 +172,22 @@ TEST(QssChain, TorqueStepHandsOverToTheLowerSpanAtTheStep) {
   expect_lower_span_holds(m, r, ts, k);
 }
 
+// The sample at the step (t = ts, an output time) is the mode past it: slack with the dead zone,
+// else the lower span pulling T. It was the upper span's, pushing with -T (the QSS half-bike's
+// -27.8 N at its brake step while the warnings said slack).
+TEST(QssChain, TheSampleAtATorqueStepIsTheModePastTheStep) {
+  const double k = 1e5, T = upper_tension(tau0);
+  for (double delta : {1e-3, 0.0}) {
+    Model m;
+    const Trajectory r = torque_step(k, delta, m);
+    const int Tu = r.reaction("chain.upper.tension"), Tl = r.reaction("chain.lower.tension");
+    ASSERT_EQ(r.time[50], ts);
+    EXPECT_NEAR(r.reactions(49, Tu), T, 1e-5 * T);
+    EXPECT_EQ(r.reactions(50, Tu), 0) << delta;
+    EXPECT_NEAR(r.reactions(50, Tl), delta > 0 ? 0.0 : T, 1e-5 * T) << delta;
+  }
+}
+
 TEST(QssChain, ConstantTorqueClosedFormTensionAndHeldLength) {
   const double k = 1e4;
   const Model m =
