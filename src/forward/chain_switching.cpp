@@ -30,9 +30,8 @@
 // grid's, one at a switch's instant the new mode's (the loads there are the new ones: the old
 // mode's tension past a step of them pushes); the energy terms carry over from leg to leg. A
 // quasi-steady chain (ChainLoad::held) switches alike, its taut span at rest + T / k
-// (mo2d/quasi_steady.hpp): the run holds the quasi-steady cells across its legs (QuasiSteadyRun
-// with legs), reset at its end; its span whose tension reaches 0 is put at its rest length first
-// (release_span; docs/reduction.md).
+// (mo2d/quasi_steady.hpp): the run holds its quasi-steady cells across its legs (QuasiSteadyRun),
+// reset at its end; a span whose tension reaches 0 is put at its rest length (release_span).
 #include <Eigen/LU>
 #include <algorithm>
 #include <chrono>
