@@ -22,7 +22,8 @@ ForwardCrosscheck crosscheck_forward(const Model& model_in, const State& initial
   r.step = check.step;
   const double h = check.step;
   const std::string what = "Box2D forward cross-check of '" + model.name + "'";
-  const double stride_wanted = std::fmax(1, std::floor((t1 - initial.t) / h / (samples - 1) + 1e-9));
+  const double stride_wanted =
+      std::fmax(1, std::floor((t1 - initial.t) / h / (samples - 1) + 1e-9));
   check_box2d_steps(what, model.name, stride_wanted * (samples - 1), h, check);
   check_result_memory(what, model.name, samples, 3, check);
   const int stride = static_cast<int>(stride_wanted);

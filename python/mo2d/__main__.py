@@ -76,8 +76,8 @@ class _RowSaver:
             os.remove(self.partial)
             return f"no run had finished, nothing written (of {runs} runs)"
         try:
-            _sweep.rows_to_csv(_sweep._table([self.rows[k] for k in sorted(self.rows)], names),
-                               self.output)
+            # the plain rows (no pandas to import: an interrupt should end at once)
+            _sweep.rows_to_csv([self.rows[k] for k in sorted(self.rows)], self.output, names)
         except Exception as e:
             return f"could not write {self.output} ({e}); the finished rows are in {self.partial}"
         os.remove(self.partial)

@@ -290,8 +290,9 @@ def sweep(scene, grid_or_samples, solve=None, summary=None, client=None, jobs=No
             x.close()
 
 
-def rows_to_csv(table, path):
-    """Write a sweep's table as CSV, atomically (a temporary file renamed over `path`)."""
+def rows_to_csv(table, path, names=()):
+    """Write a sweep's table as CSV, atomically (a temporary file renamed over `path`); a list of
+    rows has the parameters `names` first (as sweep's table)."""
     import csv
 
     if hasattr(table, "to_dict"):
@@ -299,7 +300,7 @@ def rows_to_csv(table, path):
         rows = table.to_dict("records")
     else:
         rows = list(table)
-        columns = _column_order(rows, [])
+        columns = _column_order(rows, names)
     tmp = f"{path}.tmp{os.getpid()}"
     try:
         with open(tmp, "w", newline="") as f:

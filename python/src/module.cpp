@@ -6,9 +6,9 @@
 
 #include "bindings.hpp"
 #include "mo2d/budget.hpp"
-#include "mo2d/run_stop.hpp"
 #include "mo2d/error.hpp"
 #include "mo2d/expression.hpp"
+#include "mo2d/run_stop.hpp"
 #include "mo2d/scene.hpp"
 
 namespace mo2d::py_bind {
@@ -106,10 +106,8 @@ void raise_interrupt() {
 }  // namespace
 
 void bind_interrupts() {
-  main_thread_ident = py::module_::import("threading")
-                          .attr("main_thread")()
-                          .attr("ident")
-                          .cast<unsigned long>();
+  main_thread_ident =
+      py::module_::import("threading").attr("main_thread")().attr("ident").cast<unsigned long>();
   set_interrupt_check(&python_interrupt_check);
 }
 

@@ -15,11 +15,11 @@
 #include <sstream>
 
 #include "mo2d/budget.hpp"
-#include "mo2d/run_stop.hpp"
 #include "mo2d/dynamics.hpp"
 #include "mo2d/error.hpp"
 #include "mo2d/kinematics.hpp"
 #include "mo2d/modes.hpp"
+#include "mo2d/run_stop.hpp"
 #include "modes/modes_internal.hpp"
 
 namespace mo2d {

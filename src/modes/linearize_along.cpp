@@ -205,8 +205,7 @@ std::vector<StateSpace> linearize_along(const Model& m, const Trajectory& r,
     held.forward.efforts.clear();
     for (Eigen::Index k = 0; k < r.efforts.cols(); ++k)
       held.forward.efforts.push_back(Law::constant(r.efforts(i, k)));
-    out.push_back(
-        along_step(m, states[i], held, out.empty() ? nullptr : &out.front(), budget));
+    out.push_back(along_step(m, states[i], held, out.empty() ? nullptr : &out.front(), budget));
     if (i == 0) held = detail::same_coordinates(m, out.front(), held);
   }
   return out;

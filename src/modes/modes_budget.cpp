@@ -9,8 +9,8 @@
 #include <sstream>
 
 #include "mo2d/budget.hpp"
-#include "mo2d/run_stop.hpp"
 #include "mo2d/error.hpp"
+#include "mo2d/run_stop.hpp"
 #include "modes/modes_internal.hpp"
 #include "run/format.hpp"
 
@@ -117,7 +117,6 @@ void check_eigen_budget(const std::string& what, const StateSpace& ss, double ma
   s.n = ss.n();
   check_sizes_budget(what, what, s, max_seconds, max_memory, 0, true);
 }
-
 
 RunBudget::Settings modes_budget(const std::string& what, const Model& m, double t,
                                  double max_seconds) {

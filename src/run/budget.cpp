@@ -1,6 +1,5 @@
 // Limits of a run: time grid, memory estimates, step and wall-clock budgets (mo2d/budget.hpp).
 #include "mo2d/budget.hpp"
-#include "mo2d/run_stop.hpp"
 
 #include <algorithm>
 #include <atomic>
@@ -10,6 +9,7 @@
 #include "kinematics/sparse_kinematics.hpp"
 #include "mo2d/error.hpp"
 #include "mo2d/model.hpp"
+#include "mo2d/run_stop.hpp"
 #include "run/format.hpp"
 #include "run/run_budget.hpp"
 

@@ -34,11 +34,11 @@ except KeyboardInterrupt:
 """
 
 
-def _interrupt(cmd, env=None, wait=0.7):
-    """Start cmd, wait for its first line on stdout (or `wait` s), send SIGINT; return (the time
-    it was sent, the process after it ended, its stdout)."""
-    p = subprocess.Popen(cmd, stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True, env=env)
-    first = p.stdout.readline()
+def _interrupt(cmd, wait=0.7, first_line=False):
+    """Start cmd, (first_line: wait for its first line on stdout,) wait `wait` s, send SIGINT;
+    return the time it was sent, the time it ended, the process, its stdout and stderr."""
+    p = subprocess.Popen(cmd, stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
+    first = p.stdout.readline() if first_line else ""
     time.sleep(wait)
     assert p.poll() is None, f"ended before the signal: {first}{p.stdout.read()}{p.stderr.read()}"
     sent = time.monotonic()
@@ -56,7 +56,8 @@ def _interrupt(cmd, env=None, wait=0.7):
 @pytest.mark.parametrize("kind", ["scene", "system"])
 def test_keyboard_interrupt_during_a_run(mechanisms, kind):
     sent, _, p, out, err = _interrupt(
-        [sys.executable, "-c", CHILD, kind, str(mechanisms / "double_fourbar.yaml")])
+        [sys.executable, "-c", CHILD, kind, str(mechanisms / "double_fourbar.yaml")],
+        first_line=True)
     lines = [x for x in out.splitlines() if x.startswith("KeyboardInterrupt")]
     assert lines, f"no KeyboardInterrupt: {out} {err}"
     delay = float(lines[0].split()[1]) - sent
@@ -72,7 +73,9 @@ def _chain(tmp_path, n):
         a = "ground.O" if k == 0 else f"l{k - 1}.B"
         joints += f"  j{k}: {{type: revolute, node_a: {a}, node_b: l{k}.A}}\n"
     path = tmp_path / f"chain{n}.yaml"
-    path.write_text(text + joints + "loads: {gravity: [0, -9.81]}\n")
+    rest = ", ".join(f"l{k}.w: 0" for k in range(n))  # at rest
+    path.write_text(text + joints + "loads: {gravity: [0, -9.81]}\n"
+                    f"initial: {{velocities: {{{rest}}}}}\nrun: {{solve: forward}}\n")
     return path
 
 
