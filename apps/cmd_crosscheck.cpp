@@ -12,7 +12,6 @@
 // the mechanism's size) or --angle-tolerance.
 #include <cstdio>
 #include <iostream>
-#include <sstream>
 
 #include "command.hpp"
 #include "mo2d/crosscheck.hpp"
@@ -61,21 +60,14 @@ Plot overlay_plot(const CrosscheckReport& r) {
   return p;
 }
 
-// Box2D takes (t1 - t0) / step steps (counted in int by the cross-check): within the budget.
-void check_box2d_steps(const CrosscheckCliOptions& o, const Scene& scene) {
-  const double steps = scene.run.duration / o.step;
-  if (!(steps <= scene.run.max_steps)) {
-    std::ostringstream m;
-    m << "crosscheck: --step " << o.step << " s over " << scene.run.duration << " s needs " << steps
-      << " Box2D steps, more than max_steps = " << scene.run.max_steps
-      << " (run.max_steps, --max-steps): use a longer --step";
-    throw Error(m.str(), "step");
-  }
-}
-
-CrosscheckOptions check_options(const CrosscheckCliOptions& o) {
+// The cross-check's settings, with the scene's budgets (Box2D steps, wall time, result memory:
+// CrosscheckOptions::max_steps, checked by the library).
+CrosscheckOptions check_options(const CrosscheckCliOptions& o, const Scene& scene) {
   CrosscheckOptions check;
   check.step = o.step;
+  check.max_steps = scene.run.max_steps;
+  check.max_seconds = scene.run.max_seconds;
+  check.max_memory = scene.run.max_memory;
   check.zero_inertia_fraction = o.inertia_fraction;
   if (o.feedback_time >= 0) check.feedback_time = o.feedback_time;
   return check;
@@ -85,12 +77,11 @@ CrosscheckOptions check_options(const CrosscheckCliOptions& o) {
 int forward_check(const CrosscheckCliOptions& o) {
   const Scene scene = load_scene_with_overrides(o.scene);
   build_model_of(scene);  // checks the scene's labels, prints the sketch's warnings
-  check_box2d_steps(o, scene);
   const Model model = build_scene_model(scene, {.reduction = Reduction::none});
   const State initial = initial_state(scene, model);
   const int samples = scene.run.samples > 0 ? scene.run.samples : 101;
   const ForwardCrosscheck r = mo2d::crosscheck_forward(
-      model, initial, scene.run.t0 + scene.run.duration, check_options(o), samples);
+      model, initial, scene.run.t0 + scene.run.duration, check_options(o, scene), samples);
   const bool agree =
       r.relative_position_error <= o.position_tolerance && r.max_angle_error <= o.angle_tolerance;
   std::printf("mo2d forward cross-check against Box2D: %s\n", r.mechanism.c_str());
@@ -128,10 +119,9 @@ int crosscheck(const CrosscheckCliOptions& o) {
                      "the cross-check drives the prescribed motion: the model has " +
                          std::to_string(model.dof) + " DOF and 'motion' prescribes " +
                          std::to_string(scene.motion.size()));
-  const CrosscheckOptions check = check_options(o);
+  const CrosscheckOptions check = check_options(o, scene);
   const InverseOptions run = inverse_options(scene);
   check_scene_options(scene, model, run);
-  check_box2d_steps(o, scene);
   // mo2d's reference model: the scene's, or (--reference-set) the scene with some parameters
   // changed in mo2d only, to see which modelling errors the cross-check detects
   SceneOptions ref_options = o.scene;

@@ -11,6 +11,7 @@
 //   the same independent coordinates (linearize_along): DIR/NAME_G_along.csv (one row per time
 //   and state), _H_along.csv, _C_along.csv, _D_along.csv and _linearization_along.json.
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <stdexcept>
@@ -40,6 +41,28 @@ LinearizeOptions linearize_options(const ModesCliOptions& o, const Scene& s, con
   lo.outputs = o.outputs;
   lo.forward = forward_options(s, m);
   return lo;
+}
+
+// One wall-time budget for the whole command (run.max_seconds, --max-seconds): each stage (the
+// reference run, the equilibrium, the linearization, the modes) gets what is left of it.
+class CommandBudget {
+ public:
+  explicit CommandBudget(const Scene& s)
+      : max_seconds_(s.run.max_seconds), start_(std::chrono::steady_clock::now()) {}
+  double left() const {
+    if (!(max_seconds_ > 0) || !std::isfinite(max_seconds_)) return max_seconds_;
+    const double used =
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count();
+    return std::max(max_seconds_ - used, 1e-3);
+  }
+
+ private:
+  double max_seconds_;
+  std::chrono::steady_clock::time_point start_;
+};
+
+ModesOptions modes_options(const Scene& s, const CommandBudget& b) {
+  return {.max_seconds = b.left(), .max_memory = s.run.max_memory};
 }
 
 void print_modes(const StateSpace& ss, const std::vector<Mode>& modes) {
@@ -76,6 +99,7 @@ void print_equilibrium(const Model& m, const Equilibrium& e) {
 
 int modes(const ModesCliOptions& o) {
   const Scene scene = load_scene_with_overrides(o.scene);
+  const CommandBudget budget(scene);
   const Model model = build_model_of(scene);
   EquilibriumOptions eo;
   eo.t = scene.run.t0;
@@ -83,9 +107,10 @@ int modes(const ModesCliOptions& o) {
   // from the initial state of a forward scene, the assembled configuration of an inverse one
   const VectorXd start =
       scene.run.solve == Solve::forward ? initial_state(scene, model).q0 : model.q0;
+  eo.linearize.forward.max_seconds = budget.left();
   const Equilibrium e = static_equilibrium(model, start, eo);
   print_equilibrium(model, e);
-  const std::vector<Mode> ms = vibration_modes(e.linear);
+  const std::vector<Mode> ms = vibration_modes(e.linear, modes_options(scene, budget));
   print_modes(e.linear, ms);
   OutputSet files;
   OutputSet::Scope scope(files);
@@ -144,11 +169,13 @@ double time_of(const std::string& at, double t0) {
 }
 
 // The scene's state (and, for an inverse scene, its efforts held constant) at time t.
-State reference_state(const Scene& s, const Model& m, double t, LinearizeOptions& lo) {
+State reference_state(const Scene& s, const Model& m, double t, LinearizeOptions& lo,
+                      const CommandBudget& budget) {
   if (s.run.solve == Solve::forward) {
     const State start = initial_state(s, m);
     if (t == start.t) return start;
     ForwardOptions run = forward_options(s, m);
+    run.max_seconds = budget.left();
     if (t < run.t0) throw Error("--at: t = " + std::to_string(t) + " is before t0", "--at");
     run.t1 = t;
     run.samples = 2;
@@ -156,6 +183,7 @@ State reference_state(const Scene& s, const Model& m, double t, LinearizeOptions
     return {t, r.q0.row(1).transpose(), r.q1.row(1).transpose()};
   }
   InverseOptions run = inverse_options(s);
+  run.max_seconds = budget.left();
   const bool first = t == run.t0;
   run.t1 = first ? run.t0 + 1e-3 : t;
   run.samples = 2;
@@ -172,11 +200,13 @@ int linearize_along_command(const ModesCliOptions& o, const TimeRange& tr);
 int linearize_command(const ModesCliOptions& o) {
   if (TimeRange tr; range_of(o.at, tr)) return linearize_along_command(o, tr);
   const Scene scene = load_scene_with_overrides(o.scene);
+  const CommandBudget budget(scene);
   const Model model = build_model_of(scene);
   LinearizeOptions lo = linearize_options(o, scene, model);
-  const State ref = reference_state(scene, model, time_of(o.at, scene.run.t0), lo);
+  const State ref = reference_state(scene, model, time_of(o.at, scene.run.t0), lo, budget);
+  lo.forward.max_seconds = budget.left();
   const StateSpace ss = linearize(model, ref, lo);
-  const std::vector<Mode> ms = vibration_modes(ss);
+  const std::vector<Mode> ms = vibration_modes(ss, modes_options(scene, budget));
   std::printf("mo2d linearize: %s at t = %g s (%d states, %d inputs, %d outputs), |drift| = %.3g\n",
               model.name.c_str(), ss.t, ss.n(), static_cast<int>(ss.inputs.size()),
               static_cast<int>(ss.outputs.size()), ss.drift.norm());
@@ -192,10 +222,12 @@ int linearize_command(const ModesCliOptions& o) {
 
 // The scene's run sampled at the range's times: a forward scene's run to A, then from there with
 // N samples to B; an inverse scene's run from A to B (its efforts are held at each sample).
-Trajectory reference_run(const Scene& s, const Model& m, const TimeRange& tr) {
+Trajectory reference_run(const Scene& s, const Model& m, const TimeRange& tr,
+                         const CommandBudget& budget) {
   if (s.run.solve == Solve::forward) {
     State start = initial_state(s, m);
     ForwardOptions run = forward_options(s, m);
+    run.max_seconds = budget.left();
     if (tr.a < run.t0) throw Error("--at: t = " + std::to_string(tr.a) + " is before t0", "--at");
     if (tr.a > run.t0) {
       ForwardOptions to_a = run;
@@ -207,9 +239,11 @@ Trajectory reference_run(const Scene& s, const Model& m, const TimeRange& tr) {
     run.t0 = tr.a;
     run.t1 = tr.b;
     run.samples = tr.n;
+    run.max_seconds = budget.left();
     return forward_dynamics(m, start, run);
   }
   InverseOptions run = inverse_options(s);
+  run.max_seconds = budget.left();
   run.t0 = tr.a;
   run.t1 = tr.b;
   run.samples = tr.n;
@@ -218,9 +252,11 @@ Trajectory reference_run(const Scene& s, const Model& m, const TimeRange& tr) {
 
 int linearize_along_command(const ModesCliOptions& o, const TimeRange& tr) {
   const Scene scene = load_scene_with_overrides(o.scene);
+  const CommandBudget budget(scene);
   const Model model = build_model_of(scene);
-  const LinearizeOptions lo = linearize_options(o, scene, model);
-  const Trajectory r = reference_run(scene, model, tr);
+  LinearizeOptions lo = linearize_options(o, scene, model);
+  const Trajectory r = reference_run(scene, model, tr, budget);
+  lo.forward.max_seconds = budget.left();
   const std::vector<StateSpace> along = linearize_along(model, r, lo);
   const StateSpace& f = along.front();
   std::printf(

@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "box2d_world.hpp"
+#include "crosscheck_budget.hpp"
 #include "mo2d/crosscheck.hpp"
 #include "mo2d/error.hpp"
 
@@ -20,9 +21,14 @@ ForwardCrosscheck crosscheck_forward(const Model& model_in, const State& initial
   r.mechanism = model.name;
   r.step = check.step;
   const double h = check.step;
-  const int stride =
-      std::max(1, static_cast<int>(std::floor((t1 - initial.t) / h / (samples - 1) + 1e-9)));
+  const std::string what = "Box2D forward cross-check of '" + model.name + "'";
+  const double stride_wanted =
+      std::fmax(1, std::floor((t1 - initial.t) / h / (samples - 1) + 1e-9));
+  check_box2d_steps(what, model.name, stride_wanted * (samples - 1), h, check);
+  check_result_memory(what, model.name, samples, 3, check);
+  const int stride = static_cast<int>(stride_wanted);
   r.steps = stride * (samples - 1);
+  detail::RunBudget budget(box2d_budget(what, model.name, initial.t, t1, check));
 
   ForwardOptions fo;
   fo.t0 = initial.t;
@@ -32,7 +38,10 @@ ForwardCrosscheck crosscheck_forward(const Model& model_in, const State& initial
   fo.atol = 1e-12;
   // a reference run takes ~1e3 steps per simulated second; a wrong model (the mutation check's
   // acceleration-bias flip) made CVODE grind through millions: fail instead
-  fo.max_steps = 200'000;
+  fo.max_steps =
+      static_cast<int>(check.max_steps > 0 ? std::min<long>(200'000, check.max_steps) : 200'000);
+  fo.max_seconds = check.max_seconds;
+  fo.max_memory = check.max_memory;
   const Trajectory ref = forward_dynamics(model, initial, fo);
 
   Box2DWorld w = build_box2d_world(model, initial.q0, initial.q1, check, false);
@@ -42,7 +51,9 @@ ForwardCrosscheck crosscheck_forward(const Model& model_in, const State& initial
   for (int s = 0; s < samples; ++s) {
     if (s > 0)
       for (int n = 0; n < stride; ++n) {
-        apply_loads(model, w, initial.t + ((s - 1) * stride + n) * h);
+        const int step = (s - 1) * stride + n;
+        budget.check(initial.t + step * h, step, h);
+        apply_loads(model, w, initial.t + step * h);
         w.world->Step(static_cast<float>(h), check.velocity_iterations, check.position_iterations);
       }
     const Eigen::VectorXd q0 = ref.q0.row(s).transpose();

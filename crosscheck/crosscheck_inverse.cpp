@@ -15,6 +15,7 @@
 #include <cstdio>
 
 #include "box2d_world.hpp"
+#include "crosscheck_budget.hpp"
 #include "mo2d/crosscheck.hpp"
 #include "mo2d/error.hpp"
 
@@ -105,7 +106,10 @@ CrosscheckReport crosscheck_inverse(const Model& reference_in, const Model& simu
                 simulated.name);
 
   const double h = check.step, t0 = options.t0;
-  const int steps = static_cast<int>(std::floor((options.t1 - t0) / h + 1e-9));
+  const std::string what = "Box2D cross-check of '" + simulated.name + "'";
+  const double steps_wanted = std::floor((options.t1 - t0) / h + 1e-9);
+  check_box2d_steps(what, simulated.name, steps_wanted + std::max(check.settle_steps, 0), h, check);
+  const int steps = static_cast<int>(steps_wanted);
   InverseData sim(simulated, motion, options), ref(reference, motion, options);
 
   // Box2D starts `settle` steps before t0 (see CrosscheckOptions::settle_steps): velocities of
@@ -171,6 +175,7 @@ CrosscheckReport crosscheck_inverse(const Model& reference_in, const Model& simu
   const int n_motor = static_cast<int>(motors.size());
   const int n_joint = static_cast<int>(w.joints.size());
   const int rows = steps - skip;
+  check_result_memory(what, simulated.name, rows, 1 + 2 * (n_motor + 2 * n_joint), check);
   r.time.resize(rows);
   r.mo2d_efforts.resize(rows, n_motor);
   r.box2d_efforts.resize(rows, n_motor);
@@ -185,8 +190,10 @@ CrosscheckReport crosscheck_inverse(const Model& reference_in, const Model& simu
     if (motors[k]->linear_motor) s_exact[k] = s_now[k];
   }
   const double inv_dt = 1.0 / h;
+  detail::RunBudget budget(box2d_budget(what, simulated.name, t0, options.t1, check));
   for (int n = -settle; n < steps; ++n) {
     const double t = t0 + n * h;
+    budget.check(t, n + settle, h);
     inverse_dynamics_sample(simulated, sim, t + h);
     for (int k = 0; k < n_motor; ++k) {
       const double s_next = joint_coordinate(simulated, w, *motors[k], sim.q0);

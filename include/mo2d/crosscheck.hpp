@@ -66,6 +66,14 @@ struct CrosscheckOptions {
   // c <= 12/s (RMS) and <= 30/s (max), i.e. <= 0.6 % and 1.5 % at h = 1/2000 s; 2x margin.
   double effort_rms_tolerance = 0.01, effort_max_tolerance = 0.03;
   double reaction_rms_tolerance = 0.01, reaction_max_tolerance = 0.03;
+  // Budgets of the whole cross-check (mo2d/budget.hpp; the scene's run.max_steps, max_seconds,
+  // max_memory): Box2D steps (settling steps included; more is refused before the run, naming
+  // the step), wall-clock seconds of both engines (an Error naming the time reached when they
+  // run out), and the bytes of the results (the report's series and the CSV text, about 33 bytes
+  // per value, estimated before the run). The InverseOptions' budgets are not used.
+  long max_steps = kDefaultMaxSteps;
+  double max_seconds = kDefaultMaxSeconds;
+  double max_memory = kDefaultMaxMemory;
 };
 
 // Error of one compared quantity (an effort, or a joint's reaction force vector), relative to the

@@ -156,8 +156,15 @@ struct Mode {
   Eigen::VectorXd dz;        // real position shape (p), phase-aligned, max |component| = 1
   Eigen::VectorXd dq0;       // dq0/dz dz: every coordinate of q0 (every node) for that shape
 };
+// The budgets of vibration_modes: the eigenvectors of G are dense (n x n, time as n^3), so a G
+// whose eigenproblem needs more than max_memory bytes, or more than max_seconds at a fast
+// machine's rate, is refused before the work starts (Error "max_memory", BudgetExhausted).
+struct ModesOptions {
+  double max_seconds = kDefaultMaxSeconds;
+  double max_memory = kDefaultMaxMemory;
+};
 // The modes of ss, oscillatory ones by ascending omega_n first, then the real ones.
-std::vector<Mode> vibration_modes(const StateSpace& ss);
+std::vector<Mode> vibration_modes(const StateSpace& ss, const ModesOptions& o = {});
 // Node displacements of a mode scaled so that the largest node moves by `amplitude` (m): (label
 // "body.node", dx, dy) for every node of every body (ground excluded).
 struct NodeShape {

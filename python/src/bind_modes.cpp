@@ -163,7 +163,7 @@ void bind_state_space(py::module_& m) {
             return independent_state(ss, {ss.t, ss.q0, ss.q1});
           },
           "the reference in the states")
-      .def_property_readonly("modes", &vibration_modes)
+      .def_property_readonly("modes", [](const StateSpace& ss) { return vibration_modes(ss); })
       .def(
           "shape", [](const StateSpace& ss, const Mode& md) { return shape_of(ss, md); },
           py::arg("mode"), "a mode's dz as {state label: value}")

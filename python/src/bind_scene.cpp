@@ -98,6 +98,9 @@ CrosscheckReport run_crosscheck(const Scene& scene, double step) {
                          std::to_string(scene.motion.size()));
   CrosscheckOptions check;
   check.step = step;
+  check.max_steps = scene.run.max_steps;
+  check.max_seconds = scene.run.max_seconds;
+  check.max_memory = scene.run.max_memory;
   const InverseOptions run = inverse_options(scene);
   check_scene_options(scene, model, run);
   return crosscheck_inverse(model, build_scene_model(scene, {.reduction = Reduction::none}),

@@ -41,6 +41,7 @@ struct Result {
 // mo2d.Error (a subclass of Exception) and the translation of mo2d::Error, SceneError and
 // ExpressionError into it, with the attributes element, time, file, line, column.
 void bind_errors(py::module_& m);
+void bind_interrupts();             // Ctrl-C during a run: KeyboardInterrupt (module.cpp)
 void bind_results(py::module_& m);  // Model, Result
 void bind_scene(py::module_& m);    // Scene, load_scene, inverse, forward, crosscheck
 void bind_system(py::module_& m);   // System, Law, Motion, build_model, runs

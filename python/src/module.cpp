@@ -5,8 +5,10 @@
 #include <limits>
 
 #include "bindings.hpp"
+#include "mo2d/budget.hpp"
 #include "mo2d/error.hpp"
 #include "mo2d/expression.hpp"
+#include "mo2d/run_stop.hpp"
 #include "mo2d/scene.hpp"
 
 namespace mo2d::py_bind {
@@ -59,7 +61,55 @@ bool raise_nested_python(const Error& e) {
   return false;
 }
 
+// Ctrl-C during a run (mo2d/budget.hpp, interrupts): runs poll this about every 0.05 s. On
+// Python's main thread (the only one that runs signal handlers) it takes the GIL (released by the
+// scene runs, held by the System runs: PyGILState_Ensure either way) and runs the pending signal
+// handlers; an exception one raised (KeyboardInterrupt) is kept and the run ends by Interrupted,
+// which the translator below turns back into that exception. Other threads: never interrupted
+// (and never wait for the GIL here).
+unsigned long main_thread_ident = 0;
+PyObject *pending_type = nullptr, *pending_value = nullptr, *pending_traceback = nullptr;
+
+bool finalizing() {
+#if PY_VERSION_HEX >= 0x030D0000
+  return Py_IsFinalizing() != 0;
+#else
+  return _Py_IsFinalizing() != 0;
+#endif
+}
+
+bool python_interrupt_check() {
+  if (PyThread_get_thread_ident() != main_thread_ident || finalizing()) return false;
+  const PyGILState_STATE gil = PyGILState_Ensure();
+  const bool raised = PyErr_CheckSignals() != 0;
+  if (raised) {
+    Py_XDECREF(pending_type);
+    Py_XDECREF(pending_value);
+    Py_XDECREF(pending_traceback);
+    PyErr_Fetch(&pending_type, &pending_value, &pending_traceback);
+  }
+  PyGILState_Release(gil);
+  return raised;
+}
+
+// The exception the signal handler raised (KeyboardInterrupt unless the user's handler raises
+// another), raised again now that the run has unwound.
+void raise_interrupt() {
+  if (pending_type == nullptr) {
+    PyErr_SetNone(PyExc_KeyboardInterrupt);
+    return;
+  }
+  PyErr_Restore(pending_type, pending_value, pending_traceback);  // steals the references
+  pending_type = pending_value = pending_traceback = nullptr;
+}
+
 }  // namespace
+
+void bind_interrupts() {
+  main_thread_ident =
+      py::module_::import("threading").attr("main_thread")().attr("ident").cast<unsigned long>();
+  set_interrupt_check(&python_interrupt_check);
+}
 
 void bind_errors(py::module_& m) {
   error_class = PyErr_NewExceptionWithDoc(
@@ -88,6 +138,8 @@ void bind_errors(py::module_& m) {
       raise_error(e, nullptr, e.column());
     } catch (const Error& e) {
       if (!raise_nested_python(e)) raise_error(e, nullptr, 0);
+    } catch (const Interrupted&) {
+      raise_interrupt();
     }
   });
 }
@@ -98,6 +150,7 @@ PYBIND11_MODULE(_mo2d, m) {
   m.doc() = "mo2d: dynamics of planar mechanisms (compiled part; see docs/python.md)";
   using namespace mo2d::py_bind;
   bind_errors(m);
+  bind_interrupts();
   bind_results(m);
   bind_scene(m);
   bind_system(m);

@@ -14,10 +14,12 @@
 #include <cmath>
 #include <sstream>
 
+#include "mo2d/budget.hpp"
 #include "mo2d/dynamics.hpp"
 #include "mo2d/error.hpp"
 #include "mo2d/kinematics.hpp"
 #include "mo2d/modes.hpp"
+#include "mo2d/run_stop.hpp"
 #include "modes/modes_internal.hpp"
 
 namespace mo2d {
@@ -95,6 +97,13 @@ void stiffness_of(const Model& m, Equilibrium& e) {
 Equilibrium static_equilibrium(const Model& m, const VectorXd& q0_guess,
                                const EquilibriumOptions& o) {
   Equilibrium e;
+  const std::string what = "equilibrium of '" + m.name + "'";
+  const ForwardOptions& fo = o.linearize.forward;
+  detail::check_modes_budget(what, m, fo.max_seconds, fo.max_memory, 1, false);
+  detail::RunBudget budget(detail::modes_budget(what, m, o.t, fo.max_seconds));
+  auto linearize = [&](const State& s, const LinearizeOptions& lo) {
+    return detail::linearize_within(m, s, lo, budget);
+  };
   const VectorXd start = assemble(m, q0_guess, o.t, {}, 1e-13);
   e.state = at_rest(m, start, o.t);
   // The line search compares |E a| in the coordinates of the iterate (a descent direction
@@ -103,7 +112,7 @@ Equilibrium static_equilibrium(const Model& m, const VectorXd& q0_guess,
   // Convergence is tested on |a|, which does not depend on the choice.
   LinearizeOptions lo = o.linearize;
   lo.outputs.clear();
-  e.linear = linearize(m, e.state, lo);
+  e.linear = linearize(e.state, lo);
   double r = merit(m, e.linear);
   const double ref = std::max(m.gravity.norm(), r);
   for (;; ++e.iterations) {
@@ -119,13 +128,15 @@ Equilibrium static_equilibrium(const Model& m, const VectorXd& q0_guess,
     for (double alpha = 1; alpha > 1e-4 && !accepted; alpha /= 2) {
       try {
         const State s = at_rest(m, chart_positions(m, e.linear, alpha * dz), o.t);
-        const StateSpace next = linearize(m, s, fixed);
+        const StateSpace next = linearize(s, fixed);
         if (next.drift.tail(dof).norm() <= (1 - 1e-4 * alpha) * rE.norm()) {
           e.state = s;
-          e.linear = o.linearize.coordinates.empty() ? linearize(m, s, lo) : next;
+          e.linear = o.linearize.coordinates.empty() ? linearize(s, lo) : next;
           r = merit(m, e.linear);
           accepted = true;
         }
+      } catch (const BudgetExhausted&) {
+        throw;
       } catch (const Error&) {  // no configuration there, or a singular one: shorter step
       }
     }
@@ -133,7 +144,7 @@ Equilibrium static_equilibrium(const Model& m, const VectorXd& q0_guess,
   }
   e.residual = r;
   e.moved = (e.state.q0 - start).lpNorm<Eigen::Infinity>();
-  if (!o.linearize.outputs.empty()) e.linear = linearize(m, e.state, o.linearize);
+  if (!o.linearize.outputs.empty()) e.linear = linearize(e.state, o.linearize);
   stiffness_of(m, e);
   return e;
 }

@@ -82,6 +82,14 @@ Eigen::RowVectorXd output_row(const Model& m, const State& ref, const StateSpace
 }  // namespace
 
 StateSpace linearize(const Model& m, const State& ref, const LinearizeOptions& o) {
+  const std::string what = "linearization of '" + m.name + "'";
+  detail::check_modes_budget(what, m, o.forward.max_seconds, o.forward.max_memory, 1, false);
+  detail::RunBudget budget(detail::modes_budget(what, m, ref.t, o.forward.max_seconds));
+  return detail::linearize_within(m, ref, o, budget);
+}
+
+StateSpace detail::linearize_within(const Model& m, const State& ref, const LinearizeOptions& o,
+                                    RunBudget& budget) {
   if (ref.q0.size() != m.n0 || ref.q1.size() != m.n1)
     throw Error("linearization of '" + m.name + "': the state has the wrong size", m.name, ref.t);
   if (!ref.q0.allFinite() || !ref.q1.allFinite())
@@ -91,12 +99,21 @@ StateSpace linearize(const Model& m, const State& ref, const LinearizeOptions& o
   ss.t = ref.t;
   ss.q0 = ref.q0;
   ss.q1 = ref.q1;
+  long stage = 0;
+  budget.check(ref.t, stage++, 0);
   detail::choose_coordinates(m, ref, o, ss);
+  budget.check(ref.t, stage++, 0);
   detail::tangent_bases(m, ref, ss);
+  budget.check(ref.t, stage++, 0);
 
-  ForwardData d(m, o.forward);
+  // the Jacobian of the accelerations is dense (its columns, G): a dense workspace, whatever the
+  // run's linear algebra (a large mechanism's runs are sparse)
+  ForwardOptions dense = o.forward;
+  dense.linear_algebra = LinearAlgebra::dense;
+  ForwardData d(m, dense);
   AccelerationJacobian J;
   acceleration_jacobian(d, ref.t, ref.q0, ref.q1, J);
+  budget.check(ref.t, stage++, 0);
   if (!J.approximate.empty()) ss.approximate = "da/dq: " + J.approximate + ss.approximate;
   ss.u = d.u;
   const VectorXd a = d.a;
@@ -115,6 +132,7 @@ StateSpace linearize(const Model& m, const State& ref, const LinearizeOptions& o
   }
   ss.inputs = m.input_labels();
   input_matrix_of(d, ref, ss);
+  budget.check(ref.t, stage++, 0);
   ss.outputs = o.outputs;
   ss.C.resize(static_cast<Eigen::Index>(o.outputs.size()), n);
   for (size_t i = 0; i < o.outputs.size(); ++i)

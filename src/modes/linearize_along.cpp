@@ -106,10 +106,12 @@ namespace {
 // The linearization at s in the coordinates of `fixed` (out.front()'s), checked: the chart is
 // regular and conditioned there, the degrees of freedom are those of the first state.
 StateSpace along_step(const Model& m, const State& s, const LinearizeOptions& fixed,
-                      const StateSpace* first) {
+                      const StateSpace* first, detail::RunBudget& budget) {
   StateSpace ss;
   try {
-    ss = linearize(m, s, fixed);
+    ss = detail::linearize_within(m, s, fixed, budget);
+  } catch (const BudgetExhausted&) {
+    throw;
   } catch (const Error& e) {
     if (first == nullptr) throw;
     lost_chart(m, s, fixed, std::string("do not parametrize the state (") + e.what() + ")");
@@ -125,18 +127,30 @@ StateSpace along_step(const Model& m, const State& s, const LinearizeOptions& fi
   return ss;
 }
 
+// The budgets of a linearization along `states` states (refused before any work when the
+// estimate exceeds them; the wall-clock budget checked at every stage).
+detail::RunBudget along_budget(const Model& m, const LinearizeOptions& o, std::size_t states,
+                               double t) {
+  const std::string what = "linearization of '" + m.name + "' along a reference";
+  const int k = static_cast<int>(std::min<std::size_t>(states, 1'000'000'000));
+  detail::check_modes_budget(what, m, o.forward.max_seconds, o.forward.max_memory, k, false);
+  return detail::RunBudget(detail::modes_budget(what, m, t, o.forward.max_seconds));
+}
+
 }  // namespace
 
 std::vector<StateSpace> linearize_along(const Model& m, const std::vector<State>& reference,
                                         const LinearizeOptions& o) {
   std::vector<StateSpace> out;
+  detail::RunBudget budget =
+      along_budget(m, o, reference.size(), reference.empty() ? 0.0 : reference.front().t);
   out.reserve(reference.size());
   LinearizeOptions fixed = o;
   if (fixed.coordinates.empty() && !reference.empty())
-    for (int k : detail::coordinates_along(m, reference))
+    for (int k : detail::coordinates_along(m, reference, &budget))
       fixed.coordinates.push_back(m.coordinate_labels[k]);
   for (const State& s : reference) {
-    out.push_back(along_step(m, s, fixed, out.empty() ? nullptr : &out.front()));
+    out.push_back(along_step(m, s, fixed, out.empty() ? nullptr : &out.front(), budget));
     if (out.size() == 1) fixed = detail::same_coordinates(m, out.front(), o);
   }
   return out;
@@ -182,15 +196,16 @@ std::vector<StateSpace> linearize_along(const Model& m, const Trajectory& r,
   }
   // inverse run: its efforts held at each sample, the coordinates those of the first sample
   std::vector<StateSpace> out;
+  detail::RunBudget budget = along_budget(m, o, states.size(), states.empty() ? 0.0 : states[0].t);
   LinearizeOptions held = o;
   if (held.coordinates.empty() && !states.empty())
-    for (int k : detail::coordinates_along(m, states))
+    for (int k : detail::coordinates_along(m, states, &budget))
       held.coordinates.push_back(m.coordinate_labels[k]);
   for (Eigen::Index i = 0; i < r.time.size(); ++i) {
     held.forward.efforts.clear();
     for (Eigen::Index k = 0; k < r.efforts.cols(); ++k)
       held.forward.efforts.push_back(Law::constant(r.efforts(i, k)));
-    out.push_back(along_step(m, states[i], held, out.empty() ? nullptr : &out.front()));
+    out.push_back(along_step(m, states[i], held, out.empty() ? nullptr : &out.front(), budget));
     if (i == 0) held = detail::same_coordinates(m, out.front(), held);
   }
   return out;

@@ -12,6 +12,7 @@
 #include <numbers>
 
 #include "mo2d/error.hpp"
+#include "modes/modes_internal.hpp"
 
 namespace mo2d {
 
@@ -53,10 +54,13 @@ double largest_node_move(const Model& m, const Mode& md) {
 
 }  // namespace
 
-std::vector<Mode> vibration_modes(const StateSpace& ss) {
+std::vector<Mode> vibration_modes(const StateSpace& ss, const ModesOptions& o) {
   std::vector<Mode> modes;
   if (ss.n() == 0) return modes;
+  detail::check_eigen_budget("vibration modes", ss, o.max_seconds, o.max_memory);
+  poll_interrupt();
   Eigen::EigenSolver<MatrixXd> es(ss.G);
+  poll_interrupt();
   if (es.info() != Eigen::Success)
     throw Error("vibration modes: the eigenvalues of G did not converge", "G", ss.t);
   const Eigen::VectorXcd& lam = es.eigenvalues();

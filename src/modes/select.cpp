@@ -144,12 +144,14 @@ std::vector<std::vector<int>> candidates_along(const std::vector<MatrixXd>& base
 
 }  // namespace
 
-std::vector<int> coordinates_along(const Model& m, const std::vector<State>& states) {
+std::vector<int> coordinates_along(const Model& m, const std::vector<State>& states,
+                                   RunBudget* budget) {
   const VectorXd d = column_scaling(m);
   VectorXd psi(m.m0);
   MatrixXd Psi(m.m0, m.n0);
   std::vector<MatrixXd> bases;
   for (const State& s : states) {
+    if (budget != nullptr) budget->check(s.t, static_cast<long>(bases.size()), 0);
     position_jacobian(m, s.q0, s.t, psi, Psi);
     bases.push_back(null_basis(Psi * d.head(m.n0).asDiagonal(), m.n0));
     // a change of the DOF: the bases up to it (linearize_along reports the change)

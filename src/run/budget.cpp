@@ -2,12 +2,14 @@
 #include "mo2d/budget.hpp"
 
 #include <algorithm>
+#include <atomic>
 #include <cmath>
 #include <sstream>
 
 #include "kinematics/sparse_kinematics.hpp"
 #include "mo2d/error.hpp"
 #include "mo2d/model.hpp"
+#include "mo2d/run_stop.hpp"
 #include "run/format.hpp"
 #include "run/run_budget.hpp"
 
@@ -31,6 +33,22 @@ std::string gigabytes(double bytes) {
   return s.str();
 }
 }  // namespace
+
+namespace {
+std::atomic<InterruptCheck> the_interrupt_check{nullptr};
+}  // namespace
+
+void set_interrupt_check(InterruptCheck check) {
+  the_interrupt_check.store(check);
+}
+
+InterruptCheck interrupt_check() {
+  return the_interrupt_check.load();
+}
+
+void poll_interrupt() {
+  if (const InterruptCheck f = the_interrupt_check.load(); f != nullptr && f()) throw Interrupted();
+}
 
 void check_time_grid(const char* run, double t0, double t1, long long samples) {
   if (!std::isfinite(t0))
@@ -114,6 +132,7 @@ namespace detail {
 RunBudget::RunBudget(Settings s) : s_(std::move(s)) {
   start_ = wall_seconds();
   next_report_ = start_ + s_.interval;
+  next_poll_ = start_ + kInterruptPoll;
 }
 
 double RunBudget::elapsed() const {
@@ -129,6 +148,10 @@ void RunBudget::check(double t, long steps, double step_size) {
   const double now = wall_seconds();
   if (s_.max_seconds > 0 && std::isfinite(s_.max_seconds) && now - start_ > s_.max_seconds)
     throw_exhausted(t, steps, step_size);
+  if (now >= next_poll_) {
+    next_poll_ = now + kInterruptPoll;
+    poll_interrupt();
+  }
   if (now < next_report_) return;
   next_report_ = now + s_.interval;
   // a collapsed step size, judged at report times only (not in a run's first second nor at its
@@ -163,14 +186,15 @@ void RunBudget::throw_exhausted(double t, long steps, double step_size) const {
     m << "the wall-time budget of " << fmt(s_.max_seconds) << " s ran out";
   else
     m << "the step budget of " << s_.max_steps << " steps ran out";
-  m << " at t = " << fmt(t) << " s of [" << fmt(s_.t0) << ", " << fmt(s_.t1) << "] s, after "
-    << steps << " " << s_.unit << " in " << fmt(secs) << " s";
+  m << " at t = " << fmt(t) << " s";
+  if (s_.t1 > s_.t0) m << " of [" << fmt(s_.t0) << ", " << fmt(s_.t1) << "] s";
+  m << ", after " << steps << " " << s_.unit << " in " << fmt(secs) << " s";
   if (step_size > 0) m << " (last step " << fmt(step_size) << " s)";
   m << "; raise "
     << (time_out ? "max_seconds (scene run.max_seconds, mo2d --max-seconds)"
                  : "max_steps (scene run.max_steps, mo2d --max-steps)");
   if (!s_.hint.empty()) m << ", or " << s_.hint;
-  throw Error(m.str(), s_.name, t);
+  throw BudgetExhausted(m.str(), s_.name, t);
 }
 
 }  // namespace detail

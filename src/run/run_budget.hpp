@@ -5,6 +5,7 @@
 #include <string>
 
 #include "mo2d/budget.hpp"
+#include "mo2d/run_stop.hpp"
 
 namespace mo2d::detail {
 
@@ -31,7 +32,8 @@ class RunBudget {
   };
   explicit RunBudget(Settings s);
 
-  // Throws when the budget is out; calls the monitor when due. Cheap (one clock read).
+  // Throws Error when the budget is out, Interrupted when the interrupt check says so (polled
+  // every kInterruptPoll s); calls the monitor when due. Cheap (one clock read).
   void check(double t, long steps, double step_size);
   bool out_of_time() const;  // the wall-clock budget is spent (no throw: for C callbacks)
   [[noreturn]] void throw_exhausted(double t, long steps, double step_size) const;
@@ -42,7 +44,7 @@ class RunBudget {
 
  private:
   Settings s_;
-  double start_ = 0, next_report_ = 0;
+  double start_ = 0, next_report_ = 0, next_poll_ = 0;
   bool stalled_ = false;
   std::string stall_warning_;
 };

@@ -1,6 +1,7 @@
 """mo2d sweep (the C++ tool execs python3 -m mo2d sweep): a CSV on a local cluster of 2 worker
 processes, and usage errors with status 2."""
 import subprocess
+import time
 
 import numpy as np
 import pytest
@@ -33,3 +34,48 @@ def test_sweep_command_line_usage_error(mechanisms, mo2d_cli):
     assert p.returncode == 2 and "--set mass: not a parameter" in p.stderr, p.stderr
     p = subprocess.run([mo2d_cli, "sweep", "--help"], capture_output=True, text=True, timeout=60)
     assert p.returncode == 0 and "--scheduler" in p.stdout
+
+
+def _sweep(mo2d_cli, *args, timeout=60):
+    start = time.monotonic()
+    p = subprocess.run([mo2d_cli, "sweep", *map(str, args)], capture_output=True, text=True,
+                       timeout=timeout)
+    return p, time.monotonic() - start
+
+
+# Issue 31: `-o DIR` failed with IsADirectoryError after all runs, losing every result.
+def test_sweep_output_folder_gets_the_csv(mechanisms, mo2d_cli, tmp_path):
+    p, _ = _sweep(mo2d_cli, mechanisms / "pendulum.yaml", "--set", "m=1,2", "--jobs", "0",
+                  "-o", tmp_path)
+    assert p.returncode == 0, p.stderr
+    lines = (tmp_path / "pendulum_sweep.csv").read_text().splitlines()
+    assert len(lines) == 3 and lines[0].startswith("m,ok,error")
+    assert [f.name for f in tmp_path.iterdir()] == ["pendulum_sweep.csv"]  # no .partial left
+
+
+# An output path that cannot be written and an unreachable scheduler fail before the first run,
+# in one line (was: a traceback after every run; after dask's 30 s timeout).
+def test_sweep_checks_output_and_scheduler_first(mechanisms, mo2d_cli, tmp_path):
+    p, seconds = _sweep(mo2d_cli, mechanisms / "pendulum.yaml", "--set", "m=1:2:1000",
+                        "--jobs", "0", "-o", tmp_path / "missing" / "out.csv")
+    assert p.returncode == 1 and seconds < 5, (p.returncode, seconds)
+    assert "cannot write there" in p.stderr and "Traceback" not in p.stderr, p.stderr
+    p, seconds = _sweep(mo2d_cli, mechanisms / "pendulum.yaml", "--set", "m=1,2",
+                        "--scheduler", "tcp://127.0.0.1:9", "-o", tmp_path / "s.csv")
+    assert p.returncode == 1 and seconds < 8, (p.returncode, seconds, p.stderr)
+    assert "cannot reach the Dask scheduler at 127.0.0.1:9" in p.stderr, p.stderr
+    assert "Traceback" not in p.stderr and not list(tmp_path.iterdir())
+
+
+# A grid of 1e9 values ended in a MemoryError after 45 s: refused before anything is made.
+def test_sweep_grid_size_guard(mechanisms, mo2d_cli, tmp_path):
+    p, seconds = _sweep(mo2d_cli, mechanisms / "pendulum.yaml", "--set", "m=1:2:1000000000",
+                        "-o", tmp_path / "s.csv")
+    assert p.returncode == 2 and seconds < 5, (p.returncode, seconds)
+    assert "1e+09 runs, more than the limit of 1000000" in p.stderr, p.stderr
+    p, _ = _sweep(mo2d_cli, mechanisms / "pendulum.yaml", "--set", "m=1:2:1001",
+                  "--set", "L=1:2:1000", "-o", tmp_path / "s.csv")
+    assert p.returncode == 2 and "the grid 1001 (m) x 1000 (L) has 1.001e+06 runs" in p.stderr
+    p, _ = _sweep(mo2d_cli, mechanisms / "pendulum.yaml", "--set", "m=1:2:3", "--max-runs", "2",
+                  "-o", tmp_path / "s.csv")
+    assert p.returncode == 2 and "more than the limit of 2" in p.stderr, p.stderr

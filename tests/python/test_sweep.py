@@ -62,3 +62,15 @@ def test_samples_and_a_failing_expression(mechanisms):
     assert rows[0]["ok"] and not rows[1]["ok"]
     assert "nope" in rows[1]["error"]
     assert math.isnan(rows[1]["peak.pivot.torque"])
+
+
+def test_rows_are_reported_as_they_finish_and_big_grids_refused(mechanisms):
+    seen = []
+    table = mo2d.sweep(mechanisms / "pendulum.yaml", {"m": [1.0, 2.0, -1.0]}, serial=True,
+                       on_row=lambda k, row: seen.append((k, row["m"], row["ok"])))
+    assert seen == [(0, 1.0, True), (1, 2.0, True), (2, -1.0, False)]
+    assert len(table) == 3
+    with pytest.raises(ValueError, match="1e\\+09 runs, more than the limit"):
+        mo2d.sweep(mechanisms / "pendulum.yaml", {"m": range(1000), "L": range(1000000)})
+    with pytest.raises(ValueError, match="more than the limit of 2"):
+        mo2d.sweep(mechanisms / "pendulum.yaml", [{"m": 1}] * 3, serial=True, max_runs=2)
