@@ -65,6 +65,14 @@ const char* to_string(Integrator i);
 const char* to_string(Formulation f);
 const char* to_string(LinearAlgebra a);
 
+// Whether forward_dynamics estimates the run's global error a posteriori (RunStats::
+// estimated_error; src/forward/error_estimate.cpp): automatic = when an accuracy is asked for
+// (ForwardOptions::accuracy > 0), on = always, off = never. The estimate is a second run of the
+// same method at tighter settings (tolerances / 16, a fixed step halved) on the same output
+// times; it costs about 1.5 to 2.5 times the run's CPU (docs/performance.md, "Issue 30").
+enum class ErrorEstimate { automatic, on, off };
+const char* to_string(ErrorEstimate e);
+
 // A consistent state (positions on psi = 0, velocities on A q1 = b).
 struct State {
   // time (s)
@@ -111,6 +119,9 @@ struct ForwardOptions {
   // tolerances (options_for_accuracy) and integrator, rtol, atol and step are not used. 0: the
   // integrator and tolerances above. In [kMinAccuracy, kMaxAccuracy].
   double accuracy = 0;
+  // the a-posteriori estimate of the global error (ErrorEstimate above); where it exceeds
+  // `accuracy`, the run warns with the estimate, its time and its coordinate
+  ErrorEstimate error_estimate = ErrorEstimate::automatic;
   double baumgarte_alpha = 20.0;  // 1/s, velocity-constraint feedback of the baumgarte mode
   double penalty = 0;             // augmented Lagrangian alpha (0: chosen from the mass scale)
   LinearAlgebra linear_algebra = LinearAlgebra::automatic;  // dense or sparse matrices (above)
