@@ -182,13 +182,14 @@ inline constexpr double kDefaultAccuracy = 1e-6;
 // The method forward_dynamics runs for o.accuracy > 0 from the state s, and why
 // (src/forward/method_choice.cpp). Stiffness test: |lambda|max, the spectral radius of the
 // Jacobian of the right-hand side d(q0, q1)/dt at s (power iteration on finite differences of
-// the accelerations, a few dozen evaluations), against the step the explicit method of
-// options_for_accuracy needs for the accuracy: an explicit method is stable for steps
+// the accelerations, a few dozen evaluations), against the step erk8 (rtol = accuracy / 1000)
+// needs for the accuracy at every accuracy (issue 30): an explicit method is stable for steps
 // h <= kStabilityBound / |lambda|max, so over T = t1 - t0 it needs |lambda|max T / kStabilityBound
 // steps for stability and T / h_accuracy for the accuracy. When the first exceeds
 // kStiffRatio times the second (the explicit method would crawl at its stability limit, or rk4's
 // fixed step would diverge), the mechanism is stiff there and cvode_bdf runs with
-// rtol = atol = accuracy / 1000; otherwise the explicit method of options_for_accuracy.
+// rtol = atol = accuracy / 1000; otherwise the explicit method of options_for_accuracy, except
+// that below 1e-8 a mechanism faster than rk4's calibration (|lambda|max > 4 /s) runs erk8.
 struct MethodChoice {
   ForwardOptions options{};      // o with the integrator and tolerances chosen
   double spectral_radius = NAN;  // |lambda|max at s (1/s); NaN: not estimated
