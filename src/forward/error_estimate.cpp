@@ -11,8 +11,9 @@
 // size (Model::scale): the measure of ForwardOptions::accuracy. Where the second run cannot be
 // made more accurate (next to the floor of a method: erk8 near 1e-12, the augmented Lagrangian's
 // ~1e-8 at singular instants) the difference underestimates the error; where it fails, the run
-// says that its error was not estimated. Cost: the second run, about 1.5x (erk8: 16^(1/8) =
-// 1.4x the steps) to 2x (rk4) the first's CPU; measured in docs/performance.md, "Issue 30".
+// says that its error was not estimated. Cost: the second run, 0.9 to 1.3 times the first's CPU
+// for erk8 on the shipped scenes (16^(1/8) = 1.4 times the steps at most), about 2 times for rk4
+// (half the step); measured in docs/performance.md, "Issue 30".
 #include <algorithm>
 #include <cmath>
 #include <string>
@@ -81,7 +82,7 @@ void estimate_global_error(const Model& m, const State& initial, const ForwardOp
         asked.error_estimate == ErrorEstimate::off
             ? "not estimated (error_estimate off)"
             : "not estimated: no accuracy asked for (error_estimate on estimates it by a second "
-              "run at tighter settings, about 1.5 to 2.5 times the CPU)";
+              "run at tighter settings, 1 to 2 times the run's CPU)";
     return;
   }
   const ForwardOptions o = reference_options(ran);
