@@ -3,7 +3,7 @@
 // at much tighter settings, its a-posteriori estimate (src/forward/error_estimate.cpp), whether
 // it met the accuracy or warned, and the CPU of the run and of the estimate. Prints a Markdown
 // table (docs/performance.md, "Issue 30"). Build Release:
-//   cmake --build build --target mo2d_accuracy_table -j2 && build/bench/mo2d_accuracy_table
+//   cmake --build build --target mo2d_accuracy_table -j2 && build/bench/mo2d_accuracy_table [SCENE]
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -83,7 +83,7 @@ Case scene_case(const std::string& path, const std::string& name, double duratio
 
 }  // namespace
 
-int main() {
+int main(int argc, char** argv) {  // argv[1]: only the scenes whose name contains it
   std::setvbuf(stdout, nullptr, _IONBF, 0);
   const std::string mech = MO2D_MECHANISMS_DIR, data = MO2D_TEST_DATA_DIR;
   Case cases[] = {
@@ -100,6 +100,7 @@ int main() {
       "| scene | reference | accuracy | method | error | estimated | verdict | CPU run ms | CPU "
       "estimate ms |\n|---|---|---|---|---|---|---|---|---|\n");
   for (const Case& c : cases) {
+    if (argc > 1 && c.name.find(argv[1]) == std::string::npos) continue;
     Trajectory ref;
     try {
       ref = forward_dynamics(c.model, c.start, c.reference);
