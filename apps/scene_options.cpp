@@ -54,6 +54,9 @@ constexpr RunFlag kForwardFlags[] = {
      "error of the positions asked for, relative to the mechanism's size: mo2d picks the "
      "integrator and its tolerances (run.accuracy; not with --integrator, --rtol, --atol, "
      "--step)"},
+    {"error_estimate",
+     "automatic, on or off: estimate the run's global error by a second run at tighter settings "
+     "(automatic: when an accuracy is asked for; run.error_estimate)"},
 };
 
 template <std::size_t N>
@@ -68,7 +71,8 @@ void add_run_flags(CLI::App* app, SceneOptions& o, const RunFlag (&flags)[N]) {
            std::string(f.help) +
                "; replaces the scene's value (a number may be an expression of "
                "the parameters)")
-        ->type_name(key == "integrator" || key == "formulation" || key == "linear_algebra"
+        ->type_name(key == "integrator" || key == "formulation" || key == "linear_algebra" ||
+                            key == "error_estimate"
                         ? "NAME"
                         : "VALUE");
   }

@@ -1,6 +1,7 @@
 // JSON summaries (nlohmann-json).
 #include "summary.hpp"
 
+#include <cmath>
 #include <nlohmann/json.hpp>
 
 #include "table.hpp"
@@ -57,6 +58,18 @@ json columns(const Model& m, const Trajectory& r) {
   return out;
 }
 
+// The a-posteriori estimate of the global error (RunStats): value (null: not estimated), where,
+// how, and the CPU time of the second run.
+json estimated_error(const Trajectory& r) {
+  const RunStats& st = r.stats;
+  const bool done = !std::isnan(st.estimated_error);
+  return {{"value", done ? json(st.estimated_error) : json(nullptr)},
+          {"t", done ? json(st.estimated_error_t) : json(nullptr)},
+          {"variable", st.estimated_error_variable},
+          {"method", st.error_estimate},
+          {"cpu_seconds", st.estimate_cpu_seconds}};
+}
+
 }  // namespace
 
 std::string inverse_summary(const SceneOptions& o, const Scene& s, const Model& m,
@@ -93,6 +106,7 @@ std::string forward_summary(const SceneOptions& o, const Scene& s, const Model& 
       {"atol", run.atol},
       {"step", run.step},
       {"accuracy", run.accuracy},
+      {"error_estimate", to_string(run.error_estimate)},
       {"method", r.stats.method},
       {"max_steps", run.max_steps},
       {"max_seconds", run.max_seconds},
@@ -104,6 +118,7 @@ std::string forward_summary(const SceneOptions& o, const Scene& s, const Model& 
   j["max_residuals"] = {{"position", any ? r.residuals.col(0).maxCoeff() : 0.0},
                         {"velocity", any ? r.residuals.col(1).maxCoeff() : 0.0}};
   j["energy_error"] = energy_error(r);
+  j["estimated_error"] = estimated_error(r);
   if (!s.controllers.empty()) {  // the tracking error e = x - r of each controller
     json tracking = json::object();
     for (const TrackingError& e : tracking_errors(s, m, r))

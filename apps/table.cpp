@@ -59,6 +59,15 @@ void print_forward_table(const Model& model, const Trajectory& r, const ForwardO
       to_string(run.formulation), r.stats.sparse ? "sparse" : "dense", r.stats.steps,
       r.stats.rhs_evaluations, r.stats.projections);
   if (!r.stats.method.empty()) std::printf("  method: %s\n", r.stats.method.c_str());
+  if (std::isnan(r.stats.estimated_error))
+    std::printf("  estimated error: %s\n", r.stats.error_estimate.c_str());
+  else
+    std::printf(
+        "  estimated error: %.2e of the mechanism's size, largest at t = %g s in '%s' (%s; %.3f ms "
+        "CPU)\n",
+        r.stats.estimated_error, r.stats.estimated_error_t,
+        r.stats.estimated_error_variable.c_str(), r.stats.error_estimate.c_str(),
+        1e3 * r.stats.estimate_cpu_seconds);
   std::printf("  max constraint residual: position %.2e m, velocity %.2e\n",
               r.residuals.col(0).maxCoeff(), r.residuals.col(1).maxCoeff());
   const Eigen::Index n = r.time.size() - 1;

@@ -65,6 +65,15 @@ const char* to_string(Integrator i);
 const char* to_string(Formulation f);
 const char* to_string(LinearAlgebra a);
 
+// Whether forward_dynamics estimates the run's global error a posteriori (RunStats::
+// estimated_error; src/forward/error_estimate.cpp): automatic = when an accuracy is asked for
+// (ForwardOptions::accuracy > 0), on = always, off = never. The estimate is a second run of the
+// same method at tighter settings (tolerances / 16, a fixed step halved) on the same output
+// times; it costs 0.9 to 1.3 times the run's CPU (erk8 on the shipped scenes), about 2 times for
+// rk4, on top of the run (docs/performance.md, "Issue 30").
+enum class ErrorEstimate { automatic, on, off };
+const char* to_string(ErrorEstimate e);
+
 // A consistent state (positions on psi = 0, velocities on A q1 = b).
 struct State {
   // time (s)
@@ -111,6 +120,9 @@ struct ForwardOptions {
   // tolerances (options_for_accuracy) and integrator, rtol, atol and step are not used. 0: the
   // integrator and tolerances above. In [kMinAccuracy, kMaxAccuracy].
   double accuracy = 0;
+  // the a-posteriori estimate of the global error (ErrorEstimate above); where it exceeds
+  // `accuracy`, the run warns with the estimate, its time and its coordinate
+  ErrorEstimate error_estimate = ErrorEstimate::automatic;
   double baumgarte_alpha = 20.0;  // 1/s, velocity-constraint feedback of the baumgarte mode
   double penalty = 0;             // augmented Lagrangian alpha (0: chosen from the mass scale)
   LinearAlgebra linear_algebra = LinearAlgebra::automatic;  // dense or sparse matrices (above)
@@ -171,13 +183,14 @@ inline constexpr double kDefaultAccuracy = 1e-6;
 // The method forward_dynamics runs for o.accuracy > 0 from the state s, and why
 // (src/forward/method_choice.cpp). Stiffness test: |lambda|max, the spectral radius of the
 // Jacobian of the right-hand side d(q0, q1)/dt at s (power iteration on finite differences of
-// the accelerations, a few dozen evaluations), against the step the explicit method of
-// options_for_accuracy needs for the accuracy: an explicit method is stable for steps
+// the accelerations, a few dozen evaluations), against the step erk8 (rtol = accuracy / 1000)
+// needs for the accuracy at every accuracy (issue 30): an explicit method is stable for steps
 // h <= kStabilityBound / |lambda|max, so over T = t1 - t0 it needs |lambda|max T / kStabilityBound
 // steps for stability and T / h_accuracy for the accuracy. When the first exceeds
 // kStiffRatio times the second (the explicit method would crawl at its stability limit, or rk4's
 // fixed step would diverge), the mechanism is stiff there and cvode_bdf runs with
-// rtol = atol = accuracy / 1000; otherwise the explicit method of options_for_accuracy.
+// rtol = atol = accuracy / 1000; otherwise the explicit method of options_for_accuracy, except
+// that below 1e-8 a mechanism faster than rk4's calibration (|lambda|max > 4 /s) runs erk8.
 struct MethodChoice {
   ForwardOptions options{};      // o with the integrator and tolerances chosen
   double spectral_radius = NAN;  // |lambda|max at s (1/s); NaN: not estimated

@@ -69,6 +69,8 @@ struct RunSettings {
   // forward: run.integrator, rtol, atol or step written (in the scene or as a flag). Without them
   // and without accuracy, a forward run asks for kDefaultAccuracy (forward_options).
   bool method_set = false;
+  // forward: the a-posteriori estimate of the global error (ForwardOptions::error_estimate)
+  ErrorEstimate error_estimate = ErrorEstimate::automatic;
   int max_steps = kDefaultMaxSteps;         // forward: step budget of the run
   double max_seconds = kDefaultMaxSeconds;  // wall-clock budget of the run
   double max_memory = kDefaultMaxMemory;    // bytes of dense matrices and results
@@ -161,8 +163,9 @@ struct RunOverride {
 };
 // The keys of `run:` a RunOverride may set.
 inline constexpr const char* kRunOverrideKeys[] = {
-    "t0",   "duration", "samples",   "tolerance",   "integrator", "formulation",    "rtol",
-    "atol", "step",     "max_steps", "max_seconds", "max_memory", "linear_algebra", "accuracy"};
+    "t0",          "duration",   "samples",        "tolerance", "integrator",
+    "formulation", "rtol",       "atol",           "step",      "max_steps",
+    "max_seconds", "max_memory", "linear_algebra", "accuracy",  "error_estimate"};
 std::string run_override_flag(const std::string& key);  // "max_steps" -> "--max-steps"
 
 // Read a scene file / text. Throws SceneError (file:line:column) on any problem.

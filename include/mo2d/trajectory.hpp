@@ -5,6 +5,7 @@
 // read with the same lookups; a forward run adds the energies and the integrator's statistics.
 // write_csv (mo2d/csv.hpp) writes one as a CSV whose header is the labels of its columns.
 #include <Eigen/Core>
+#include <limits>
 #include <string>
 #include <vector>
 
@@ -36,6 +37,17 @@ struct RunStats {
   // forward runs: the integrator that ran, and when it was chosen for an accuracy
   // (ForwardOptions::accuracy, choose_method) the choice and its reason
   std::string integrator{}, method{};
+  // forward runs: the a-posteriori estimate of the global error (ForwardOptions::error_estimate,
+  // src/forward/error_estimate.cpp): the largest difference of a position coordinate at the
+  // output times from a second run at tighter settings, relative to the mechanism's size
+  // (Model::scale; a rotation as the arc of its body's size: the measure of
+  // ForwardOptions::accuracy), with its time (s) and coordinate; NaN: not estimated.
+  double estimated_error = std::numeric_limits<double>::quiet_NaN();
+  double estimated_error_t = 0;
+  std::string estimated_error_variable{};
+  // how the estimate was made (the second run's settings) or why there is none
+  std::string error_estimate{};
+  double estimate_cpu_seconds = 0;  // CPU time of the second run (s; not in cpu_seconds)
 };
 
 // The result of a run (inverse_dynamics or forward_dynamics), one row per sample: the state,

@@ -16,7 +16,7 @@ from . import _mo2d
 BUDGET_KEYS = ("max_steps", "max_seconds", "max_memory")
 INVERSE_KEYS = ("t0", "duration", "samples", "tolerance") + BUDGET_KEYS
 FORWARD_KEYS = ("t0", "duration", "samples", "integrator", "formulation", "rtol", "atol",
-                "step", "accuracy") + BUDGET_KEYS
+                "step", "accuracy", "error_estimate") + BUDGET_KEYS
 ALL_KEYS = tuple(dict.fromkeys(INVERSE_KEYS + FORWARD_KEYS))
 
 
@@ -65,11 +65,13 @@ def inverse(scene, *, t0=None, duration=None, samples=None, tolerance=None, max_
 
 def forward(scene, *, t0=None, duration=None, samples=None, integrator=None, formulation=None,
             rtol=None, atol=None, step=None, max_steps=None, max_seconds=None, max_memory=None,
-            accuracy=None):
+            accuracy=None, error_estimate=None):
     """Forward dynamics of a scene from its initial state, as `mo2d forward` runs it; the run
     settings given replace the scene's (`mo2d forward --integrator rk4 --step 1e-4 ...`);
-    accuracy=1e-6: mo2d picks the integrator and its tolerances (`--accuracy 1e-6`)."""
+    accuracy=1e-6: mo2d picks the integrator and its tolerances (`--accuracy 1e-6`);
+    error_estimate="on" | "off" | "automatic": the a-posteriori estimate of the global error
+    (`--error-estimate`; r.stats["estimated_error"])."""
     settings = dict(t0=t0, duration=duration, samples=samples, integrator=integrator,
                     formulation=formulation, rtol=rtol, atol=atol, step=step, accuracy=accuracy,
-                    max_steps=max_steps, max_seconds=max_seconds, max_memory=max_memory)
+                    error_estimate=error_estimate, max_steps=max_steps, max_seconds=max_seconds, max_memory=max_memory)
     return _mo2d._forward(_with(scene, settings, FORWARD_KEYS))

@@ -4,6 +4,7 @@
 #include <pybind11/stl.h>
 
 #include <algorithm>
+#include <cmath>
 #include <utility>
 
 #include "bindings.hpp"
@@ -89,6 +90,13 @@ py::dict stats(const RunStats& s, const std::vector<std::string>& warnings) {
   d["min_pivot_ratio"] = s.min_pivot_ratio;
   d["max_drift"] = s.max_drift;
   d["linear_algebra"] = s.sparse ? "sparse" : "dense";
+  // the a-posteriori estimate of the global error (forward runs; None: not estimated)
+  const bool estimated = !std::isnan(s.estimated_error);
+  d["estimated_error"] = estimated ? py::object(py::float_(s.estimated_error)) : py::none();
+  d["estimated_error_t"] = estimated ? py::object(py::float_(s.estimated_error_t)) : py::none();
+  d["estimated_error_variable"] = s.estimated_error_variable;
+  d["error_estimate"] = s.error_estimate;
+  d["estimate_cpu_seconds"] = s.estimate_cpu_seconds;
   return d;
 }
 

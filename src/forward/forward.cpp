@@ -56,6 +56,18 @@ const char* to_string(Formulation f) {
   return "?";
 }
 
+const char* to_string(ErrorEstimate e) {
+  switch (e) {
+    case ErrorEstimate::automatic:
+      return "automatic";
+    case ErrorEstimate::on:
+      return "on";
+    case ErrorEstimate::off:
+      return "off";
+  }
+  return "?";
+}
+
 const char* to_string(LinearAlgebra a) {
   switch (a) {
     case LinearAlgebra::automatic:
@@ -332,8 +344,8 @@ void check_forward_options(const Model& m, const ForwardOptions& o) {
                forward_memory_bytes(m, o), o.max_memory, model_sizes(m), "max_memory");
 }
 
-Trajectory detail::forward_run(const Model& m, const State& initial,
-                               const ForwardOptions& options) {
+Trajectory detail::forward_run(const Model& m, const State& initial, const ForwardOptions& options,
+                               ForwardOptions* chosen) {
   check_forward_options(m, options_for_accuracy(m, options));
   if (m.n1 == 0)  // nothing to integrate (a scene without bodies, or every body fixed)
     throw Error("forward dynamics of '" + m.name +
@@ -347,7 +359,8 @@ Trajectory detail::forward_run(const Model& m, const State& initial,
   // the integrator for an accuracy asked for: explicit unless stiff at the initial state
   const MethodChoice choice = choose_method(m, at_t0, options);
   const ForwardOptions& o = choice.options;
-  if (choice.stiff) check_forward_options(m, o);
+  if (options.accuracy > 0) check_forward_options(m, o);  // the method chosen
+  if (chosen != nullptr) *chosen = o;
   if (detail::switches_chains(m)) {  // legs between span switches, each with the chosen method
     Trajectory r = detail::forward_chain_switching(m, initial, o);
     r.stats.integrator = to_string(o.integrator);
@@ -410,8 +423,10 @@ Trajectory detail::forward_run(const Model& m, const State& initial,
 }
 
 Trajectory forward_dynamics(const Model& m, const State& initial, const ForwardOptions& options) {
-  Trajectory r = detail::forward_run(m, initial, options);
+  ForwardOptions ran;
+  Trajectory r = detail::forward_run(m, initial, options, &ran);
   detail::check_energy_balance(m, r);  // of the whole run (a switching run's legs: forward_run)
+  detail::estimate_global_error(m, initial, options, ran, r);
   return r;
 }
 

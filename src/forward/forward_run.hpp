@@ -52,9 +52,16 @@ struct Recorder {
 void check_finite_sample(const Model& m, const Trajectory& r, int k);
 // A warning in r.stats if the run's energy balance is off by more than 1 % of its energy scale.
 void check_energy_balance(const Model& m, Trajectory& r);
-// forward_dynamics without the check of the energy balance: a leg of the span switching, whose
-// run checks the balance of all its legs together.
-Trajectory forward_run(const Model& m, const State& initial, const ForwardOptions& options);
+// forward_dynamics without the check of the energy balance and the error estimate: a leg of the
+// span switching, whose run checks the balance of all its legs together, and the second run of
+// the estimate. chosen: where given, the options that ran (the method chosen for an accuracy).
+Trajectory forward_run(const Model& m, const State& initial, const ForwardOptions& options,
+                       ForwardOptions* chosen = nullptr);
+// The a-posteriori estimate of r's global error (ForwardOptions::error_estimate;
+// error_estimate.cpp) into r.stats, with a warning where it exceeds the accuracy asked for: `asked`
+// the options of the run, `ran` the options that ran (forward_run's `chosen`).
+void estimate_global_error(const Model& m, const State& initial, const ForwardOptions& asked,
+                           const ForwardOptions& ran, Trajectory& r);
 
 // Integrator drivers: integrate from s0 to o.t1, recording every output time.
 void run_explicit_rk(const Model& m, ForwardData& d, const State& s0, const ForwardOptions& o,

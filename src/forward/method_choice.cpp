@@ -7,12 +7,18 @@
 // 2.83), dopri5 (real 3.3) and Fehlberg 8(7) all hold the half-disc of radius kStabilityBound =
 // 2.5 to within their error control, so the run needs about
 //   N_stab = |lambda|max T / kStabilityBound
-// steps for stability, T = t1 - t0, and N_acc = T / h_acc for the accuracy, h_acc the step of the
-// calibration (accuracy.cpp) on the double four-bar at that accuracy:
-//   erk8 (accuracy >= 1e-5, tol = accuracy / 1000): h_acc = 0.08 s (tol / 1e-8)^(1/8) (127 steps
-//        over 10 s at tol 1e-8, 62 at 1e-5; docs/performance.md "items 2 and 4"),
-//   dopri5 (tol = accuracy / 1000): h_acc = 0.013 s (tol / 1e-9)^(1/5) (757 steps at 1e-9),
-//   rk4: its fixed step.
+// steps for stability, T = t1 - t0, and N_acc = T / h_acc for the accuracy, h_acc the step of
+// the adaptive explicit method (erk8, tol = accuracy / 1000) on the double four-bar at that
+// accuracy (calibration: accuracy.cpp):
+//   h_acc = 0.08 s (tol / 1e-8)^(1/8) (127 steps over 10 s at tol 1e-8, 62 at 1e-5;
+//   docs/performance.md "items 2 and 4"),
+// at every accuracy, also below 1e-8 where options_for_accuracy gives rk4: measured against
+// rk4's fixed step (~50 times shorter than erk8's) a mechanism stiff at 1e-8 came out "not
+// stiff" at 1e-9 and ran rk4 at a step its fast motion did not allow, 1.5e5 times worse than
+// asked (issue 30; tests/forward/accuracy_contract_test.cpp).
+// Below 1e-8 rk4's step is the double four-bar's (slow motion, |lambda|max = 3.22 /s at t0): a
+// mechanism not stiff but with |lambda|max above kRk4FastestRate = 4 /s runs erk8 (tol =
+// accuracy / 1000) instead, whose error control finds the step its motion needs.
 // N_stab > kStiffRatio N_acc: stiff; the explicit method would take kStiffRatio times the steps
 // its accuracy needs (adaptive: held at the stability limit by its error control; rk4: diverges),
 // while cvode_bdf (A(alpha)-stable) takes steps of the accuracy: cvode_bdf with rtol = atol =
@@ -49,7 +55,13 @@ namespace {
 constexpr int kMaxPowerPairs = 100;       // power iterations on J^2 at most
 constexpr double kPowerConverged = 1e-4;  // relative change of |lambda|max between iterations
 constexpr double kFiniteStep = 1e-7;      // forward-difference step, relative to Model::scale
-constexpr double kBdfTolerancePerAccuracy = 1e-3;  // cvode_bdf: rtol = atol = accuracy x this
+constexpr double kBdfTolerancePerAccuracy = 1e-3;       // cvode_bdf: rtol = atol = accuracy x this
+constexpr double kExplicitTolerancePerAccuracy = 1e-3;  // erk8: the same (accuracy.cpp)
+// rk4's step (accuracies below 1e-8, accuracy.cpp) is calibrated on the double four-bar, whose
+// |lambda|max at t0 is 3.22 /s, with a margin of 3 in the error: rk4's error grows as
+// (h |lambda|)^4, so a mechanism with |lambda|max above kRk4FastestRate (1.25 times that:
+// 1.25^4 = 2.4, within the margin) moves faster than the step allows and runs erk8 instead.
+constexpr double kRk4FastestRate = 4;  // 1/s
 
 // f(t, y) of the run (without the energy terms); false where the accelerations are regularized
 // (a singular configuration: the derivatives there say nothing about stiffness) or not finite.
@@ -100,16 +112,13 @@ double spectral_radius(const Model& m, const State& s, const ForwardOptions& o) 
   return rho;
 }
 
-// The step the explicit method of options_for_accuracy needs for the accuracy (header comment).
-double accuracy_step(const ForwardOptions& e) {
-  switch (e.integrator) {
-    case Integrator::erk8:
-      return 0.08 * std::pow(e.rtol / 1e-8, 1.0 / 8);
-    case Integrator::dopri5:
-      return 0.013 * std::pow(e.rtol / 1e-9, 1.0 / 5);
-    default:
-      return e.step;
-  }
+// The step an adaptive explicit method (erk8, rtol = atol = accuracy / 1000) needs for the
+// accuracy (header comment): the yardstick of the stiffness test at every accuracy, continuous in
+// it. (rk4's fixed step below 1e-8 is not: it is ~50 times shorter than erk8's, so measured
+// against it a mechanism stiff at 1e-8 came out "not stiff" at 1e-9 and ran rk4 at a step its
+// fast motion did not allow: issue 30.)
+double accuracy_step(double accuracy) {
+  return 0.08 * std::pow(kExplicitTolerancePerAccuracy * accuracy / 1e-8, 1.0 / 8);
 }
 
 std::string method_text(const ForwardOptions& o) {
@@ -125,7 +134,7 @@ MethodChoice choose_method(const Model& m, const State& s, const ForwardOptions&
   if (o.accuracy == 0) return c;
   const double T = o.t1 - o.t0;
   c.spectral_radius = spectral_radius(m, s, o);
-  c.accuracy_steps = T / accuracy_step(c.options);
+  c.accuracy_steps = T / accuracy_step(o.accuracy);
   const std::string asked = "accuracy " + detail::fmt(o.accuracy);
   if (!std::isfinite(c.spectral_radius)) {
     c.reason = asked + ", stiffness not estimated (the accelerations at t0 are regularized: a " +
@@ -152,12 +161,18 @@ MethodChoice choose_method(const Model& m, const State& s, const ForwardOptions&
         ") but with quasi-steady springs, which cvode_bdf cannot follow: " + method_text(c.options);
     return c;
   }
+  std::string fast;
   if (c.stiff) {
     c.options.integrator = Integrator::cvode_bdf;
     c.options.rtol = c.options.atol = kBdfTolerancePerAccuracy * o.accuracy;
+  } else if (c.options.integrator == Integrator::rk4 && c.spectral_radius > kRk4FastestRate) {
+    c.options.integrator = Integrator::erk8;  // rk4's step is too long for this motion
+    c.options.rtol = c.options.atol = kExplicitTolerancePerAccuracy * o.accuracy;
+    fast = "; faster than rk4's calibrated step allows (|lambda|max above " +
+           detail::fmt(kRk4FastestRate) + " /s)";
   }
-  c.reason =
-      asked + (c.stiff ? ", stiff (" : ", not stiff (") + why + "): " + method_text(c.options);
+  c.reason = asked + (c.stiff ? ", stiff (" : ", not stiff (") + why + fast +
+             "): " + method_text(c.options);
   return c;
 }
 

@@ -281,7 +281,7 @@ void read_run(const Reader& r, const YAML::Node& node, RunSettings& run,
   r.check_keys(node,
                {"solve", "t0", "duration", "samples", "tolerance", "integrator", "formulation",
                 "rtol", "atol", "step", "outputs", "max_steps", "max_seconds", "max_memory",
-                "linear_algebra", "accuracy"},
+                "linear_algebra", "accuracy", "error_estimate"},
                "run");
   // where each run key is written: errors found when the run's options are checked against the
   // model (check_scene_options) are reported there
@@ -348,6 +348,11 @@ void read_run(const Reader& r, const YAML::Node& node, RunSettings& run,
                                                {{"automatic", LinearAlgebra::automatic},
                                                 {"dense", LinearAlgebra::dense},
                                                 {"sparse", LinearAlgebra::sparse}});
+  if (node["error_estimate"].IsDefined())
+    run.error_estimate = choice<ErrorEstimate>(r, node["error_estimate"], "run.error_estimate",
+                                               {{"automatic", ErrorEstimate::automatic},
+                                                {"on", ErrorEstimate::on},
+                                                {"off", ErrorEstimate::off}});
   read_accuracy(r, node, run);
   if (node["outputs"].IsDefined()) {
     run.csv = run.json = false;

@@ -186,6 +186,7 @@ ForwardOptions forward_options(const Scene& scene, const Model& model) {
   o.accuracy = scene.run.accuracy > 0 ? scene.run.accuracy
                : scene.run.method_set ? 0
                                       : kDefaultAccuracy;
+  o.error_estimate = scene.run.error_estimate;
   o.max_steps = scene.run.max_steps;
   o.max_seconds = scene.run.max_seconds;
   o.max_memory = scene.run.max_memory;

@@ -157,3 +157,21 @@ def test_the_integrators_selected_agree_on_the_physics(scene_path):
     loose = mo2d.forward(scene, rtol=1e-4, atol=1e-6)
     assert loose.stats["steps"] < runs["cvode_bdf"].stats["steps"] / 3
     assert math.isfinite(loose["link.angle"][-1])
+
+
+def test_forward_reports_its_estimated_error(scene_path):
+    """A run with an accuracy carries its a-posteriori error estimate (issue 30); a run that names
+    its integrator only with error_estimate="on"."""
+    scene = mo2d.load_scene(str(scene_path))
+    f = mo2d.forward(scene, duration=1, accuracy=1e-6)
+    assert 0 < f.stats["estimated_error"] <= 1e-6
+    assert f.stats["estimated_error_variable"] in f.columns
+    assert f.stats["estimate_cpu_seconds"] > 0
+    assert "second run" in f.stats["error_estimate"]
+    plain = mo2d.forward(scene, duration=1, integrator="dopri5", rtol=1e-8)
+    assert plain.stats["estimated_error"] is None
+    assert "not estimated" in plain.stats["error_estimate"]
+    on = mo2d.forward(scene, duration=1, integrator="dopri5", rtol=1e-8, error_estimate="on")
+    assert on.stats["estimated_error"] > 0
+    with pytest.raises(mo2d.Error, match="--error-estimate"):
+        mo2d.forward(scene, error_estimate="yes")

@@ -108,6 +108,20 @@ TEST(RunOverride, LaterChecksNameTheFlag) {
   }
 }
 
+// run.error_estimate (ForwardOptions::error_estimate): automatic by default, on or off from the
+// command line into the run's options; it is not a method (the scene's rk4 stays); another value
+// is refused naming the flag.
+TEST(RunOverride, ErrorEstimate) {
+  EXPECT_EQ(with({}).run.error_estimate, ErrorEstimate::automatic);
+  const Scene on = with({{"error_estimate", "on"}});
+  EXPECT_EQ(on.run.error_estimate, ErrorEstimate::on);
+  EXPECT_EQ(on.run.integrator, Integrator::rk4);
+  EXPECT_EQ(with({{"error_estimate", "off"}}).run.error_estimate, ErrorEstimate::off);
+  EXPECT_NE(error_of({{"error_estimate", "yes"}}).find("--error-estimate: run.error_estimate"),
+            std::string::npos)
+      << error_of({{"error_estimate", "yes"}});
+}
+
 // run.accuracy picks the integrator and its tolerances: with one of them in the same place it is
 // refused; a later setting (the command line over the scene) replaces the earlier one.
 TEST(RunOverride, AccuracyAndMethodSettings) {
