@@ -427,7 +427,7 @@ Trajectory forward_dynamics(const Model& m, const State& initial, const ForwardO
   Trajectory r = detail::forward_run(m, initial, options, &ran);
   detail::check_energy_balance(m, r);  // of the whole run (a switching run's legs: forward_run)
   detail::estimate_global_error(m, initial, options, ran, r);
-  return r;
+  return detail::meet_accuracy(m, initial, options, std::move(r));
 }
 
 std::vector<std::function<double(double)>> efforts_from_inverse(const Model& m,

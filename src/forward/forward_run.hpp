@@ -62,6 +62,10 @@ Trajectory forward_run(const Model& m, const State& initial, const ForwardOption
 // the options of the run, `ran` the options that ran (forward_run's `chosen`).
 void estimate_global_error(const Model& m, const State& initial, const ForwardOptions& asked,
                            const ForwardOptions& ran, Trajectory& r);
+// r, or a rerun at a tighter accuracy where r's estimated error exceeds the accuracy asked for
+// (meet_accuracy.cpp: at most three retries, within the wall-time budget).
+Trajectory meet_accuracy(const Model& m, const State& initial, const ForwardOptions& asked,
+                         Trajectory r);
 
 // Integrator drivers: integrate from s0 to o.t1, recording every output time.
 void run_explicit_rk(const Model& m, ForwardData& d, const State& s0, const ForwardOptions& o,

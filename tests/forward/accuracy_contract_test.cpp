@@ -131,16 +131,26 @@ TEST(AccuracyContract, StiffSevenBodyChainMetOrWarned) {
 }
 
 // A long run: the pendulum asked for 1e-6 over 100 s (erk8, tol 1e-9, calibrated on 10 s) ends
-// about 2e-5 off; the run says so, with its estimate, instead of the docs only.
-TEST(AccuracyContract, LongPendulumRunSaysItMissesTheAccuracy) {
+// about 2e-5 off; the run finds it by its estimate and is run again at a tighter accuracy
+// (meet_accuracy.cpp) until it meets 1e-6. At the floor of the accuracies (1e-9) no tighter run
+// is possible: the run says that it misses the accuracy, with its estimate.
+TEST(AccuracyContract, LongPendulumRunIsRetriedOrSaysItMissesTheAccuracy) {
   const ContractCase c = contract_pendulum(100);
   const Trajectory ref = forward_dynamics(c.model, c.start, c.reference);
   ForwardOptions o = c.base;
   o.accuracy = 1e-6;
-  const Trajectory r = forward_dynamics(c.model, c.start, o);
-  const double e = contract_error(c.model, r, ref);
-  EXPECT_GT(e, 1e-6);
-  EXPECT_TRUE(contract_warned(r, 1e-6)) << e;
+  Trajectory r = forward_dynamics(c.model, c.start, o);
+  double e = contract_error(c.model, r, ref);
+  EXPECT_TRUE(e <= 1e-6 || contract_warned(r, 1e-6)) << e;
+  EXPECT_NE(r.stats.error_estimate.find("retried for the accuracy asked for"), std::string::npos)
+      << r.stats.error_estimate;
+  EXPECT_LT(std::abs(std::log(r.stats.estimated_error / e)), std::log(3.0))
+      << e << " " << r.stats.estimated_error;
+  o.accuracy = 1e-9;
+  r = forward_dynamics(c.model, c.start, o);
+  e = contract_error(c.model, r, ref);
+  EXPECT_GT(e, 1e-9);
+  EXPECT_TRUE(contract_warned(r, 1e-9)) << e;
   EXPECT_LT(std::abs(std::log(r.stats.estimated_error / e)), std::log(3.0))
       << e << " " << r.stats.estimated_error;
   EXPECT_NE(r.stats.estimated_error_variable.find("link."), std::string::npos);
