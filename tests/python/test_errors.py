@@ -134,4 +134,4 @@ def test_a_count_beyond_int_names_the_argument():
         mo2d.forward_dynamics(model, mo2d.consistent_state(model, velocities=[("link.w", 0.0)]),
                               1.0, max_steps=10**12)
     r = mo2d.inverse_dynamics(model, [("link.angle", "t")], samples=11)
-    assert r.time.shape == (11,)
+    assert r.t.shape == (11,)
