@@ -14,6 +14,7 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
 #include <stdexcept>
 #include <string>
 
@@ -161,11 +162,32 @@ bool range_of(const std::string& at, TimeRange& r) {
 double time_of(const std::string& at, double t0) {
   if (at.empty()) return t0;
   if (at.rfind("t=", 0) != 0) throw Error("--at: expected t=TIME, got '" + at + "'", "--at");
-  size_t used = 0;
-  const double t = std::stod(at.substr(2), &used);
-  if (used != at.size() - 2 || !std::isfinite(t))
-    throw Error("--at: '" + at + "' is not t=<number>", "--at");
+  const std::string number = at.substr(2);
+  char* end = nullptr;
+  const double t = std::strtod(number.c_str(), &end);
+  if (number.empty() || end != number.c_str() + number.size() || !std::isfinite(t))
+    throw Error("--at: '" + at + "' is not t=<number> (a finite time in s)", "--at");
   return t;
+}
+
+// The times of --at lie on the scene's run [t0, t0 + duration] (a run to a later time would be
+// a run the scene did not ask for, to any length: t = 1e300 integrated until its budget ran out).
+void check_on_run(const Scene& s, double a, double b) {
+  const double t0 = s.run.t0, t1 = s.run.t0 + s.run.duration;
+  auto text = [](double t) {
+    char buf[32];
+    std::snprintf(buf, sizeof buf, "%g", t);
+    return std::string(buf);
+  };
+  if (a < t0)
+    throw Error("--at: t = " + text(a) +
+                    " s is before the scene's run, which starts at t0 = " + text(t0) + " s",
+                "--at");
+  if (b > t1)
+    throw Error("--at: t = " + text(b) +
+                    " s is after the end of the scene's run, t0 + duration = " + text(t1) +
+                    " s: lengthen the run with --duration (or --t0)",
+                "--at");
 }
 
 // The scene's state (and, for an inverse scene, its efforts held constant) at time t.
@@ -176,7 +198,6 @@ State reference_state(const Scene& s, const Model& m, double t, LinearizeOptions
     if (t == start.t) return start;
     ForwardOptions run = forward_options(s, m);
     run.max_seconds = budget.left();
-    if (t < run.t0) throw Error("--at: t = " + std::to_string(t) + " is before t0", "--at");
     run.t1 = t;
     run.samples = 2;
     const Trajectory r = forward_dynamics(m, start, run);
@@ -203,7 +224,9 @@ int linearize_command(const ModesCliOptions& o) {
   const CommandBudget budget(scene);
   const Model model = build_model_of(scene);
   LinearizeOptions lo = linearize_options(o, scene, model);
-  const State ref = reference_state(scene, model, time_of(o.at, scene.run.t0), lo, budget);
+  const double t = time_of(o.at, scene.run.t0);
+  check_on_run(scene, t, t);
+  const State ref = reference_state(scene, model, t, lo, budget);
   lo.forward.max_seconds = budget.left();
   const StateSpace ss = linearize(model, ref, lo);
   const std::vector<Mode> ms = vibration_modes(ss, modes_options(scene, budget));
@@ -228,7 +251,6 @@ Trajectory reference_run(const Scene& s, const Model& m, const TimeRange& tr,
     State start = initial_state(s, m);
     ForwardOptions run = forward_options(s, m);
     run.max_seconds = budget.left();
-    if (tr.a < run.t0) throw Error("--at: t = " + std::to_string(tr.a) + " is before t0", "--at");
     if (tr.a > run.t0) {
       ForwardOptions to_a = run;
       to_a.t1 = tr.a;
@@ -255,6 +277,7 @@ int linearize_along_command(const ModesCliOptions& o, const TimeRange& tr) {
   const CommandBudget budget(scene);
   const Model model = build_model_of(scene);
   LinearizeOptions lo = linearize_options(o, scene, model);
+  check_on_run(scene, tr.a, tr.b);
   const Trajectory r = reference_run(scene, model, tr, budget);
   lo.forward.max_seconds = budget.left();
   const std::vector<StateSpace> along = linearize_along(model, r, lo);
@@ -303,7 +326,7 @@ Command add_modes_command(CLI::App& app) {
   add_common(sub, *o);
   sub->add_option("--amplitude", o->amplitude,
                   "largest node displacement in the mode pictures, fraction of the size (0.1)")
-      ->check(CLI::PositiveNumber);
+      ->check(finite_positive());
   sub->add_flag("--filmstrip", o->filmstrip, "also a filmstrip of one period of each mode");
   sub->add_flag("!--no-pictures", o->pictures, "no mode pictures");
   return {sub, [o] { return modes(*o); }};

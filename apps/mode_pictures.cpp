@@ -28,8 +28,13 @@ Motion along_mode(const Model& m, const StateSpace& ss, const Eigen::VectorXd& d
         std::printf("  note: mode drawn at 1/%d of the amplitude asked (no configuration beyond)\n",
                     1 << halvings);
       return mo;
-    } catch (const Error&) {
-      if (halvings == 6) throw;
+    } catch (const Error& e) {
+      if (halvings == 6)
+        throw Error(std::string("mode picture: no configuration along the mode even at 1/64 of the "
+                                "amplitude asked: use a smaller --amplitude (the largest node "
+                                "displacement, a fraction of the size; default 0.1); at 1/64: ") +
+                        e.what(),
+                    "--amplitude");
     }
   }
 }

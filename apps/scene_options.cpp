@@ -5,7 +5,9 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cmath>
 #include <cstdio>
+#include <cstdlib>
 #include <filesystem>
 
 namespace mo2d::cli {
@@ -91,6 +93,29 @@ CLI::Validator name_equals_value() {
         }
       },
       "name=value");
+}
+
+namespace {
+CLI::Validator finite_number(bool zero_allowed) {
+  return CLI::Validator(
+      [zero_allowed](const std::string& s) {
+        char* end = nullptr;
+        const double v = std::strtod(s.c_str(), &end);
+        const char* expected = zero_allowed ? "a finite number >= 0" : "a finite number > 0";
+        if (s.empty() || end != s.c_str() + s.size() || !std::isfinite(v) ||
+            (zero_allowed ? v < 0 : v <= 0))
+          return std::string("must be ") + expected + ", got '" + s + "'";
+        return std::string();
+      },
+      zero_allowed ? "NONNEGATIVE" : "POSITIVE");
+}
+}  // namespace
+
+CLI::Validator finite_positive() {
+  return finite_number(false);
+}
+CLI::Validator finite_non_negative() {
+  return finite_number(true);
 }
 
 void add_scene_options(CLI::App* app, SceneOptions& o, bool with_out, RunFlags flags) {

@@ -40,6 +40,10 @@ Scene load_scene_with_overrides(const SceneOptions& o);
 
 // CLI11 check of a --set / --reference-set value: name=value (parse_override), else a usage error.
 CLI::Validator name_equals_value();
+// CLI11 checks of a number option that must be finite and > 0 (or >= 0): CLI11's PositiveNumber
+// and NonNegativeNumber let "nan" through (no comparison with NaN fails), and "inf".
+CLI::Validator finite_positive();
+CLI::Validator finite_non_negative();
 
 // A command-line usage error: main prints it and exits with status 2.
 struct UsageError : Error {

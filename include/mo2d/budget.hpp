@@ -49,7 +49,8 @@ double conditioning_memory_bytes(const Model& m);
 // Refuses magnitudes double precision cannot carry through a run (Error naming the element):
 // a body's weight and energy scale m max(1, |g|) max(1, L)^2 (L: the model's size), its inertia,
 // a spring's stiffness k max(1, L)^2 and damping, above kMaxMagnitude (mass 1e308 kg: m g L
-// overflows to inf and the efforts to NaN).
+// overflows to inf and the efforts to NaN); gravity |g| max(1, L) above sqrt(kMaxMagnitude)
+// (its accelerations are squared).
 inline constexpr double kMaxMagnitude = 1e250;
 void check_magnitudes(const Model& m);
 

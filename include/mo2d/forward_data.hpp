@@ -194,6 +194,7 @@ struct ForwardData {
   void set_inputs(const VectorXd& efforts, double t);
   void load(double t, const VectorXd& q0, const VectorXd& q1, bool baumgarte);
   void evaluate(double t, const VectorXd& q0, const VectorXd& q1);
+  [[noreturn]] void throw_not_finite(double t, const VectorXd& q0, const VectorXd& q1) const;
   void solve_formulation(double t, const VectorXd& q0);
   void evaluate_friction(double t, const VectorXd& q0, const VectorXd& q1);
   void reactions_at(double t, const VectorXd& q0, const VectorXd& q1);

@@ -2,8 +2,8 @@
 // The output files of one run, written together or not at all.
 //
 // OutputSet::add() writes each file as a hidden temporary in its folder (DIR/.NAME.tmp.PID.N);
-// commit() renames them all to their names under an exclusive lock of DIR/.mo2d.lock (flock), with
-// SIGINT, SIGTERM and SIGHUP blocked while it renames. So:
+// commit() renames them all to their names under an exclusive lock of DIR/.mo2d.lock (flock; the
+// file is removed when released), with SIGINT, SIGTERM and SIGHUP blocked while it renames. So:
 //  - a run that fails before commit() leaves none of its files (the destructor removes the
 //    temporaries, and the folder if the set created it and it is empty);
 //  - an interrupted run leaves no temporary: remove_temporaries_on_signal() installs handlers that

@@ -23,6 +23,8 @@ state), mo2d.InverseWorkspace (one sample at a time); mo2d.energy_balance(result
 Parameter sweeps on Dask: mo2d.sweep (mo2d/_sweep.py; command line: python3 -m mo2d sweep). Every error is a mo2d.Error.
 """
 
+import numbers
+
 from . import _mo2d
 from . import _runs
 from ._runs import forward, inverse  # noqa: F401  (run settings as keywords)
@@ -99,8 +101,11 @@ def _overrides(set):
     for name, value in items:
         if isinstance(value, str):
             out.append((str(name), value))
-        else:
+        elif isinstance(value, numbers.Real) and not isinstance(value, bool):
             out.append((str(name), repr(float(value))))
+        else:
+            raise TypeError(f"set: parameter '{name}': a number or a string (an expression of the "
+                            f"other parameters), not {type(value).__name__}")
     return out
 
 
@@ -112,7 +117,13 @@ def load_scene(path, set=None, run=None):
 
 
 def parse_scene(text, file_name="<scene>", set=None, run=None):
-    """A scene from YAML text (errors name file_name:line:column)."""
+    """A scene from YAML text, a str or bytes (UTF-8, or UTF-16/32 with a byte order mark);
+    errors name file_name:line:column."""
+    if isinstance(text, (bytes, bytearray, memoryview)):
+        text = bytes(text)
+    elif not isinstance(text, str):
+        raise TypeError(f"parse_scene: the text of a scene (str), not {type(text).__name__}; "
+                        "a file: mo2d.load_scene(path)")
     return _mo2d._parse_scene(text, file_name, _overrides(set), _run_overrides(run))
 
 

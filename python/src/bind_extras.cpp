@@ -182,15 +182,15 @@ void bind_run_extras(py::module_& m) {
   m.def(
       "inverse_dynamics_lagrange",
       [](const std::shared_ptr<Model>& model, const Motions& motion, double t0, double t1,
-         int samples, const Params& params) {
+         const py::object& samples, const Params& params) {
         InverseOptions o;
         o.t0 = t0;
         o.t1 = t1;
-        o.samples = samples;
+        o.samples = to_count(samples, "samples");
         return make_result(model, inverse_dynamics_lagrange(*model, to_motions(motion, params), o));
       },
       py::arg("model"), py::arg("motion"), py::arg("t0") = 0.0, py::arg("t1") = 1.0,
-      py::arg("samples") = 501, py::arg("params") = Params{},
+      py::arg("samples") = py::int_(501), py::arg("params") = Params{},
       "inverse dynamics by Lagrange multipliers on a model built with reduction='none'");
   m.def(
       "efforts_from_samples",

@@ -3,6 +3,7 @@
 #include <pybind11/eigen.h>
 #include <pybind11/stl.h>
 
+#include <limits>
 #include <map>
 #include <memory>
 #include <utility>
@@ -32,6 +33,20 @@ Formulation to_formulation(const std::string& s) {
     if (s == to_string(f)) return f;
   throw Error("formulation: augmented_lagrangian, lagrange or null_space, not '" + s + "'",
               "formulation");
+}
+
+int to_count(const py::object& value, const char* name) {
+  if (PyBool_Check(value.ptr()) || !PyIndex_Check(value.ptr()))
+    throw py::type_error(std::string(name) + ": an integer, not " +
+                         py::str(py::type::handle_of(value).attr("__name__")).cast<std::string>());
+  const py::int_ v = py::reinterpret_steal<py::int_>(PyNumber_Index(value.ptr()));
+  if (!v) throw py::error_already_set();
+  const py::int_ lo(std::numeric_limits<int>::min()), hi(std::numeric_limits<int>::max());
+  if (v < lo || v > hi)
+    throw Error(std::string(name) + " = " + py::repr(v).cast<std::string>() +
+                    " is out of range: at most " + std::to_string(std::numeric_limits<int>::max()),
+                name);
+  return v.cast<int>();
 }
 
 std::vector<Prescribed> to_motions(const Motions& motion, const Params& params) {
@@ -64,11 +79,11 @@ Reduction to_reduction(const std::string& s) {
 }
 
 Result inverse(const std::shared_ptr<Model>& model, const Motions& motion, double t0, double t1,
-               int samples, const Params& params, const std::string& complement) {
+               const py::object& samples, const Params& params, const std::string& complement) {
   InverseOptions o;
   o.t0 = t0;
   o.t1 = t1;
-  o.samples = samples;
+  o.samples = to_count(samples, "samples");
   if (complement == "recursive")
     o.complement = ComplementMethod::recursive;
   else if (complement != "prescribed")
@@ -84,21 +99,22 @@ std::function<double(double, const VectorXd&, const VectorXd&)> to_stop(const py
       [f](double t, const VectorXd& q0, const VectorXd& q1) { return f(t, q0, q1).cast<double>(); };
 }
 
-Result forward(const std::shared_ptr<Model>& model, const State& initial, double t1, int samples,
-               const std::string& integrator, double rtol, double atol, double step,
-               const Motions& efforts, const Params& params, double max_seconds,
-               const std::string& formulation, int max_steps, const py::object& stop_when) {
+Result forward(const std::shared_ptr<Model>& model, const State& initial, double t1,
+               const py::object& samples, const std::string& integrator, double rtol, double atol,
+               double step, const Motions& efforts, const Params& params, double max_seconds,
+               const std::string& formulation, const py::object& max_steps,
+               const py::object& stop_when) {
   ForwardOptions o;
   o.t0 = initial.t;
   o.t1 = t1;
-  o.samples = samples;
+  o.samples = to_count(samples, "samples");
   o.integrator = to_integrator(integrator);
   o.formulation = to_formulation(formulation);
   o.rtol = rtol;
   o.atol = atol;
   o.step = step;
   o.max_seconds = max_seconds;
-  o.max_steps = max_steps;
+  o.max_steps = to_count(max_steps, "max_steps");
   o.efforts = to_efforts(*model, efforts, params);
   o.stop_when = to_stop(stop_when);
   return make_result(model, forward_dynamics(*model, initial, o));
@@ -133,16 +149,16 @@ void bind_runs(py::module_& m) {
       py::arg("system"), py::arg("reduction") = "flat", py::arg("assemble") = true);
   bind_state(m);
   m.def("inverse_dynamics", &inverse, py::arg("model"), py::arg("motion"), py::arg("t0") = 0.0,
-        py::arg("t1") = 1.0, py::arg("samples") = 501, py::arg("params") = Params{},
+        py::arg("t1") = 1.0, py::arg("samples") = py::int_(501), py::arg("params") = Params{},
         py::arg("complement") = "prescribed",
         "motion: [(coordinate, expression of t or callable -> (s, s', s''))], one per DOF");
   m.def(
       "forward_dynamics", &forward, py::arg("model"), py::arg("initial"), py::arg("t1"),
-      py::arg("samples") = 101, py::arg("integrator") = "cvode_bdf", py::arg("rtol") = 1e-8,
-      py::arg("atol") = 1e-10, py::arg("step") = 1e-3, py::arg("efforts") = Motions{},
-      py::arg("params") = Params{}, py::arg("max_seconds") = kDefaultMaxSeconds,
-      py::arg("formulation") = "augmented_lagrangian", py::arg("max_steps") = kDefaultMaxSteps,
-      py::arg("stop_when") = py::none(),
+      py::arg("samples") = py::int_(101), py::arg("integrator") = "cvode_bdf",
+      py::arg("rtol") = 1e-8, py::arg("atol") = 1e-10, py::arg("step") = 1e-3,
+      py::arg("efforts") = Motions{}, py::arg("params") = Params{},
+      py::arg("max_seconds") = kDefaultMaxSeconds, py::arg("formulation") = "augmented_lagrangian",
+      py::arg("max_steps") = py::int_(kDefaultMaxSteps), py::arg("stop_when") = py::none(),
       "efforts: [(input label, law)]; integrator: cvode_bdf, cvode_adams, rk4, dopri5, erk6, erk8, "
       "baumgarte; "
       "stop_when(t, q0, q1) -> float: the run stops where it changes sign");

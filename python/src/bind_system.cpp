@@ -23,15 +23,40 @@ Vec2 v2(const P2& p) {
   return {p[0], p[1]};
 }
 
-// nodes={"O": (0, 0), "A": (0, 0.1)} (insertion order kept) or [("O", (0, 0)), ...]
-NodeList to_nodes(const py::object& nodes) {
+std::string type_name(const py::handle& v) {
+  return py::str(py::type::handle_of(v).attr("__name__")).cast<std::string>();
+}
+
+// nodes={"O": (0, 0), "A": (0, 0.1)} (insertion order kept) or [("O", (0, 0)), ...]; anything
+// else is a TypeError naming the body and the node (not pybind11's "Unable to cast").
+NodeList to_nodes(const std::string& body, const py::object& nodes) {
+  const std::string what = "add_body('" + body + "'): nodes: ";
+  const std::string form = "a dict {name: (x, y)} or a list [(name, (x, y)), ...]";
+  if (py::isinstance<py::str>(nodes) || py::isinstance<py::bytes>(nodes) ||
+      !(py::isinstance<py::dict>(nodes) || py::isinstance<py::sequence>(nodes)))
+    throw py::type_error(what + form + ", not " + type_name(nodes));
+  py::list items;
+  if (py::isinstance<py::dict>(nodes))
+    for (const auto& [k, v] : nodes.cast<py::dict>()) items.append(py::make_tuple(k, v));
+  else
+    items = py::list(nodes);
   NodeList out;
-  if (py::isinstance<py::dict>(nodes)) {
-    for (const auto& [k, v] : nodes.cast<py::dict>())
-      out.emplace_back(k.cast<std::string>(), v.cast<P2>());
-    return out;
+  for (const auto& item : items) {
+    const std::string at = what + "item " + std::to_string(out.size()) + ": ";
+    if (!py::isinstance<py::sequence>(item) || py::isinstance<py::str>(item) || py::len(item) != 2)
+      throw py::type_error(at + "(name, (x, y)), not " + py::repr(item).cast<std::string>());
+    const py::sequence pair = item.cast<py::sequence>();
+    if (!py::isinstance<py::str>(pair[0]))
+      throw py::type_error(at + "the name is a str, not " + type_name(pair[0]));
+    const std::string name = pair[0].cast<std::string>();
+    try {
+      out.emplace_back(name, pair[1].cast<P2>());
+    } catch (const py::cast_error&) {
+      throw py::type_error(what + "node '" + name + "': a position (x, y) of two numbers, not " +
+                           py::repr(pair[1]).cast<std::string>());
+    }
   }
-  return nodes.cast<NodeList>();
+  return out;
 }
 
 // com=None (first node), "O" (a node), ("O", "A", gamma[, rho]); com_point=(x, y)
@@ -57,7 +82,7 @@ void add_body(System& s, const std::string& name, const py::object& nodes, doubl
               double inertia, const py::object& com, const std::optional<P2>& com_point,
               const std::vector<P2>& shape) {
   BodyDef b{.name = name, .mass = mass, .inertia = inertia, .com = to_com(com, com_point)};
-  for (const auto& [n, p] : to_nodes(nodes)) b.nodes.push_back({n, v2(p)});
+  for (const auto& [n, p] : to_nodes(name, nodes)) b.nodes.push_back({n, v2(p)});
   for (const auto& p : shape) b.shape.push_back(v2(p));
   s.add_body(std::move(b));
 }

@@ -16,6 +16,11 @@ namespace mo2d::py_bind {
 
 using Motions = std::vector<std::pair<std::string, pybind11::object>>;  // label -> Python value
 
+// A count argument (samples, max_steps) from any Python integer: a Python int beyond the C++ int
+// is a mo2d.Error naming the argument and the range (pybind11's own conversion would say only
+// "incompatible function arguments"); a float or a bool is a TypeError naming it.
+int to_count(const pybind11::object& value, const char* name);
+
 // "rk4" -> Integrator::rk4 (to_string's names); another name is an Error listing them.
 Integrator to_integrator(const std::string& s);
 Formulation to_formulation(const std::string& s);

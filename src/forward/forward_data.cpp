@@ -244,15 +244,29 @@ void ForwardData::evaluate(double t, const VectorXd& q0, const VectorXd& q1) {
   } else {
     evaluate_friction(t, q0, q1);
   }
-  if (!q0.allFinite() || !q1.allFinite())
-    throw Error("forward dynamics of '" + m.name +
-                    "': the integrator produced a non-finite state "
-                    "at t = " +
-                    fmt(t),
-                m.name, t);
-  if (!a.allFinite())
-    throw Error("forward dynamics of '" + m.name + "': non-finite accelerations at t = " + fmt(t),
-                m.name, t);
+  if (!q0.allFinite() || !q1.allFinite() || !a.allFinite()) throw_not_finite(t, q0, q1);
+}
+
+// The state or the accelerations are not finite: the first such variable and the largest rate,
+// so that a run that diverged (steps too long for its time scales) says so.
+void ForwardData::throw_not_finite(double t, const VectorXd& q0, const VectorXd& q1) const {
+  std::string what = "non-finite accelerations", label;
+  auto first = [&](const VectorXd& x, const std::vector<std::string>& labels, const char* suffix) {
+    for (Eigen::Index i = 0; label.empty() && i < x.size(); ++i)
+      if (!std::isfinite(x[i])) label = labels[static_cast<size_t>(i)] + suffix;
+  };
+  first(q0, m.coordinate_labels, "");
+  first(q1, m.rate_labels, "");
+  if (!label.empty()) what = "the integrator produced a non-finite state";
+  first(a, m.rate_labels, ".dot");
+  Eigen::Index k = 0;
+  const double largest = q1.size() ? q1.cwiseAbs().maxCoeff(&k) : 0;
+  throw Error("forward dynamics of '" + m.name + "': " + what + " at t = " + fmt(t) + " s ('" +
+                  label + "'; the largest rate " +
+                  (q1.size() ? m.rate_labels[static_cast<size_t>(k)] : "") + " = " + fmt(largest) +
+                  "): the run diverged, its steps too long for the motion's time scales (a "
+                  "stiff or huge load?), or a value overflowed",
+              label, t);
 }
 
 void ForwardData::solve_formulation(double t, const VectorXd& q0) {

@@ -25,9 +25,11 @@
 #include <cmath>
 #include <cstdio>
 #include <limits>
+#include <optional>
 
 #include "forward/forward_run.hpp"
 #include "forward/rk_tableau.hpp"
+#include "forward/step_failure.hpp"
 #include "mo2d/dynamics.hpp"
 #include "mo2d/error.hpp"
 #include "mo2d/quasi_steady.hpp"
@@ -77,6 +79,7 @@ class RkDriver {
     VectorXd y(n_), y_new(n_);
     y << s0.q0, s0.q1, VectorXd::Zero(kEnergyTerms);
     double t = o_.t0;
+    growth_.emplace(m_, d_, t, s0.q0, s0.q1);
     record(rec, t, y);
     if (held_) held_start_ = save_held(m_);
     double g_prev = event(t, y);
@@ -161,6 +164,7 @@ class RkDriver {
   // step starts from, and at the accepted step's end
   bool held_ = false;
   HeldValues held_start_, held_end_;
+  std::optional<LoadGrowth> growth_;  // named when the step collapses in the error test
 
   void split(const VectorXd& y) {
     q0_ = y.head(m_.n0);
@@ -280,7 +284,8 @@ class RkDriver {
       h = hh;
       if (hh < 1e-14 * std::max(1.0, std::abs(t)))
         throw Error("forward dynamics of '" + m_.name + "': step size too small at t = " + fmt(t) +
-                        " s (error test)",
+                        " s (error test)" +
+                        growth_->describe(t, y.head(m_.n0), y.segment(m_.n0, m_.n1)),
                     m_.name, t);
     }
   }
@@ -312,10 +317,17 @@ class RkDriver {
                           " s (steps of " + fmt(h_min) + " to " + fmt(hh) +
                           " s all meet it); error estimate of the " + fmt(hh) + " s step " +
                           fmt(err) + " times rtol/atol, largest in '" + var + "'";
-    if (!(err * o_.rtol <= kGrossStep))
+    if (!(err * o_.rtol <= kGrossStep)) {
+      const std::string stiff = stiffness_cause(
+          m_, o_, d_, State{t, y.head(m_.n0), y.segment(m_.n0, m_.n1)}, h_min, kProjectBelow);
+      if (!stiff.empty())
+        throw Error("forward dynamics of '" + m_.name + "': no step of " + fmt(h_min) + " to " +
+                        fmt(hh) + " s from t = " + fmt(t) + " s is accurate: " + stiff,
+                    m_.name, t);
       throw Error("forward dynamics of '" + m_.name + "': " + w + ", gross (" + fmt(err * o_.rtol) +
                       " relative): try other tolerances or another method",
                   var, t);
+    }
     if (d_.stats.warnings.size() < 20) d_.stats.warnings.push_back(w + "; step taken");
   }
 

@@ -1,10 +1,8 @@
 // Output files of one run, written together or not at all (mo2d/output.hpp).
 #include "mo2d/output.hpp"
 
-#include <fcntl.h>
 #include <pthread.h>
 #include <signal.h>
-#include <sys/file.h>
 #include <unistd.h>
 
 #include <algorithm>
@@ -20,6 +18,7 @@
 #include <thread>
 
 #include "mo2d/error.hpp"
+#include "output/dir_lock.hpp"
 #include "output/write_file.hpp"
 
 namespace mo2d {
@@ -61,28 +60,6 @@ void test_signal() {
 }
 
 thread_local OutputSet* t_active = nullptr;
-
-// Exclusive lock of DIR/.mo2d.lock, held while alive.
-class DirLock {
- public:
-  explicit DirLock(const std::string& dir) {
-    const std::string path = (std::filesystem::path(dir) / ".mo2d.lock").string();
-    fd_ = ::open(path.c_str(), O_RDWR | O_CREAT | O_CLOEXEC, 0644);
-    if (fd_ < 0) throw Error("cannot open the lock '" + path + "': " + std::strerror(errno), path);
-    while (::flock(fd_, LOCK_EX) != 0)
-      if (errno != EINTR) {
-        const std::string why = std::strerror(errno);
-        ::close(fd_);
-        throw Error("cannot lock '" + path + "': " + why, path);
-      }
-  }
-  ~DirLock() { ::close(fd_); }  // releases the lock
-  DirLock(const DirLock&) = delete;
-  DirLock& operator=(const DirLock&) = delete;
-
- private:
-  int fd_ = -1;
-};
 
 // Blocks the termination signals while alive (an interrupt comes before or after, not amid).
 class BlockSignals {
@@ -238,9 +215,9 @@ void OutputSet::commit() {
   }
   if (dirs.empty()) return;
   std::sort(dirs.begin(), dirs.end());  // one lock order for every run: no deadlock
-  std::vector<std::unique_ptr<DirLock>> locks;
+  std::vector<std::unique_ptr<detail::DirLock>> locks;
   locks.reserve(dirs.size());
-  for (const auto& d : dirs) locks.push_back(std::make_unique<DirLock>(d));
+  for (const auto& d : dirs) locks.push_back(std::make_unique<detail::DirLock>(d));
   BlockSignals blocked;
   std::vector<File*> renamed;
   for (auto& f : files_) {

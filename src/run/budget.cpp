@@ -119,6 +119,17 @@ void check_magnitudes(const Model& m) {
     refuse("torsional spring", s.name, "stiffness", s.stiffness, "N m/rad", 1, "k");
     refuse("torsional spring", s.name, "damping", s.damping, "N m s/rad", 1, "c");
   }
+  // gravity: the accelerations it gives are squared (kinetic energies, the integrators' error
+  // norms), so |g| max(1, L) is held below the square root of the limit (g = 1e200 m/s^2 passed
+  // the bodies' checks with a mass of 1 kg, then overflowed in the first step)
+  const double gl = std::hypot(m.gravity.x(), m.gravity.y()) * std::max(1.0, m.scale);
+  if (!(gl <= std::sqrt(kMaxMagnitude)))
+    throw Error("gravity (" + fmt(m.gravity.x()) + ", " + fmt(m.gravity.y()) +
+                    ") m/s^2 is out of range: |g| max(1, L) = " + fmt(gl) + " exceeds " +
+                    fmt(std::sqrt(kMaxMagnitude)) + " = sqrt(" + fmt(kMaxMagnitude) +
+                    "), beyond what double precision carries through a run (the squares of "
+                    "accelerations and velocities overflow to inf)",
+                "gravity");
 }
 
 std::string model_sizes(const Model& m) {

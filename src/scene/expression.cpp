@@ -98,9 +98,13 @@ class ExpressionParser {
   }
 
  private:
+  // Nesting: parentheses, function calls and chains of unary signs or powers (the parser
+  // recurses at each). Size: terms (numbers and names) and all nodes; evaluation recurses once
+  // per level of the tree, which is at most the terms plus the nesting, so no accepted input can
+  // overflow the stack.
   static constexpr int kMaxDepth = 200;
-  static constexpr size_t kMaxNodes =
-      10000;  // nesting limit: deep input must not overflow the stack
+  static constexpr int kMaxTerms = 10000;
+  static constexpr size_t kMaxNodes = 50000;
 
   [[noreturn]] void fail(const std::string& what) const {
     throw ExpressionError(what, static_cast<int>(pos_) + 1);
@@ -117,8 +121,15 @@ class ExpressionParser {
     return false;
   }
   int add(Expression::Op op, int a = -1, int b = -1, int column = 0) {
-    // evaluation recurses once per node: bound the size so no input can overflow the stack
-    if (e_.nodes_.size() >= kMaxNodes) fail("expression too long (more than 10000 terms)");
+    if (op == Expression::Op::number || op == Expression::Op::name) {
+      if (terms_ == kMaxTerms)
+        fail("expression too long (more than " + std::to_string(kMaxTerms) +
+             " terms: numbers and names)");
+      ++terms_;
+    }
+    if (e_.nodes_.size() >= kMaxNodes)
+      fail("expression too long (more than " + std::to_string(kMaxNodes) +
+           " operations and terms)");
     Expression::Node n;
     n.op = op;
     n.a = a;
@@ -128,8 +139,12 @@ class ExpressionParser {
     return static_cast<int>(e_.nodes_.size()) - 1;
   }
   int column() const { return static_cast<int>(pos_) + 1; }
-  void enter(int depth) const {
-    if (depth > kMaxDepth) fail("expression nested too deeply");
+  // one level deeper: a '(' , a function's argument, a unary sign or an exponent
+  int deeper(int depth) const {
+    if (depth >= kMaxDepth)
+      fail("expression nested too deeply (more than " + std::to_string(kMaxDepth) +
+           " levels of parentheses, function calls, signs and powers)");
+    return depth + 1;
   }
 
   // A comparison operator at pos_ (consumed), or -1.
@@ -153,13 +168,12 @@ class ExpressionParser {
     return kind;
   }
   int expr(int depth) {
-    enter(depth);
-    const int left = sum(depth + 1);
+    const int left = sum(depth);
     skip();
     const int col = column();
     const int kind = comparison();
     if (kind < 0) return left;
-    const int n = add(Expression::Op::compare, left, sum(depth + 1), col);
+    const int n = add(Expression::Op::compare, left, sum(depth), col);
     e_.nodes_[n].function = kind;
     skip();
     const size_t at = pos_;
@@ -170,58 +184,53 @@ class ExpressionParser {
     return n;
   }
   int sum(int depth) {
-    enter(depth);
-    int left = term(depth + 1);
+    int left = term(depth);
     for (;;) {
       skip();
       const int col = column();
       if (accept('+'))
-        left = add(Expression::Op::add, left, term(depth + 1), col);
+        left = add(Expression::Op::add, left, term(depth), col);
       else if (accept('-'))
-        left = add(Expression::Op::sub, left, term(depth + 1), col);
+        left = add(Expression::Op::sub, left, term(depth), col);
       else
         return left;
     }
   }
   int term(int depth) {
-    enter(depth);
-    int left = unary(depth + 1);
+    int left = unary(depth);
     for (;;) {
       skip();
       const int col = column();
       if (accept('*'))
-        left = add(Expression::Op::mul, left, unary(depth + 1), col);
+        left = add(Expression::Op::mul, left, unary(depth), col);
       else if (accept('/'))
-        left = add(Expression::Op::div, left, unary(depth + 1), col);
+        left = add(Expression::Op::div, left, unary(depth), col);
       else
         return left;
     }
   }
   int unary(int depth) {
-    enter(depth);
     skip();
     const int col = column();
-    if (accept('-')) return add(Expression::Op::neg, unary(depth + 1), -1, col);
-    if (accept('+')) return unary(depth + 1);
-    return power(depth + 1);
+    if (accept('-')) return add(Expression::Op::neg, unary(deeper(depth)), -1, col);
+    if (accept('+')) return unary(deeper(depth));
+    return power(depth);
   }
   int power(int depth) {
-    enter(depth);
-    const int base = primary(depth + 1);
+    const int base = primary(depth);
     skip();
     const int col = column();
-    if (accept('^')) return add(Expression::Op::pow, base, unary(depth + 1), col);
+    if (accept('^')) return add(Expression::Op::pow, base, unary(deeper(depth)), col);
     return base;
   }
   int primary(int depth) {
-    enter(depth);
     skip();
     if (pos_ >= s_.size()) fail("expected a number, a name or '(' but the expression ended");
     const char c = s_[pos_];
     const int col = column();
     if (c == '(') {
       ++pos_;
-      const int inner = expr(depth + 1);
+      const int inner = expr(deeper(depth));
       if (!accept(')')) fail("expected ')'");
       return inner;
     }
@@ -254,8 +263,8 @@ class ExpressionParser {
   }
   int call(const std::string& name, int col, int depth) {
     ++pos_;  // '('
-    std::vector<int> args{expr(depth + 1)};
-    while (accept(',')) args.push_back(expr(depth + 1));
+    std::vector<int> args{expr(deeper(depth))};
+    while (accept(',')) args.push_back(expr(deeper(depth)));
     if (!accept(')')) fail("expected ',' or ')' in the arguments of " + name + "()");
     const size_t count = args.size();
     auto arity = [&](size_t expected) {
@@ -349,6 +358,7 @@ class ExpressionParser {
   std::string_view s_;
   std::span<const NamedFunction> user_;
   size_t pos_ = 0;
+  int terms_ = 0;  // numbers and names so far
 };
 
 Expression Expression::parse(std::string_view text, std::span<const NamedFunction> functions) {

@@ -81,6 +81,24 @@ double number(const Reading& r, const std::string& cell, const std::string& colu
   return v;
 }
 
+std::string text(double v) {
+  std::ostringstream s;
+  s << v;
+  return s.str();
+}
+
+// The cell's number times the column's scale, refused at its own line when the product is not
+// finite (a value that is finite as written may overflow once scaled).
+double scaled(const Reading& r, const std::string& cell, const std::string& column, double scale,
+              const char* scale_key, int line) {
+  const double v = number(r, cell, column, line);
+  const double out = scale * v;
+  if (!std::isfinite(out))
+    r.fail(line, "column '" + column + "': " + cell + " times " + scale_key + " = " + text(scale) +
+                     " is out of range (" + text(out) + ")");
+  return out;
+}
+
 }  // namespace
 
 LookupTable read_table_csv(const std::string& path, std::string name, const CsvColumns& columns,
@@ -121,8 +139,8 @@ LookupTable read_table_csv(const std::string& path, std::string name, const CsvC
       r.fail(line, "the row has " + std::to_string(row.size()) + " value(s), the column '" +
                        header[std::max(ix, iy)] + "' is number " +
                        std::to_string(std::max(ix, iy) + 1));
-    x.push_back(columns.scale_x * number(r, row[ix], header[ix], line));
-    y.push_back(columns.scale_y * number(r, row[iy], header[iy], line));
+    x.push_back(scaled(r, row[ix], header[ix], columns.scale_x, "scale_x", line));
+    y.push_back(scaled(r, row[iy], header[iy], columns.scale_y, "scale_y", line));
     lines.push_back(line);
     if (x.size() > 1 && !(x.back() > x[x.size() - 2]))
       r.fail(line, "x must increase: " + header[ix] + " = " + row[ix] + " after " + previous +

@@ -1,4 +1,5 @@
-# ctest helper: two runs into one --out folder at once leave the CSV and the JSON of one run.
+# ctest helper: two runs into one --out folder at once leave the CSV and the JSON of one run, and
+# no lock file.
 # -DMO2D=exe -DSCENE=pendulum_samples_n.yaml -DDIR=out. Run A (n = 11) writes its CSV at once and
 # its JSON 1.5 s later; run B (n = 21) writes both 0.5 s after it starts (MO2D_TEST_OUTPUT_DELAY,
 # a test hook of mo2d/output.hpp). File by file, the folder would end with B's CSV and A's JSON.
@@ -26,4 +27,8 @@ endif()
 file(GLOB tmp "${DIR}/*.tmp.*" "${DIR}/.*.tmp.*")
 if(tmp)
   message(FATAL_ERROR "temporaries left: ${tmp}")
+endif()
+# the folder's lock exists only while a run holds it (src/output/dir_lock.hpp)
+if(EXISTS "${DIR}/.mo2d.lock")
+  message(FATAL_ERROR "the lock file ${DIR}/.mo2d.lock was left behind")
 endif()

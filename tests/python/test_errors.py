@@ -86,3 +86,52 @@ def test_expression_error_has_its_column():
     with pytest.raises(mo2d.Error) as info:
         mo2d.Law("2 * sinn(t)")
     assert info.value.column == 5
+
+
+# ---- arguments of the wrong kind name what they are (issue 31, item 5) ------------------------
+
+
+def test_a_parameter_override_of_the_wrong_type_names_the_parameter(mechanisms):
+    with pytest.raises(TypeError, match="set: parameter 'L': a number or a string .* not list"):
+        mo2d.load_scene(mechanisms / "pendulum.yaml", set={"L": [1, 2]})
+    with pytest.raises(TypeError, match="parameter 'm'.* not bool"):
+        mo2d.load_scene(mechanisms / "pendulum.yaml", set={"m": True})
+
+
+def test_parse_scene_reads_text_or_bytes_and_refuses_other_types(mechanisms):
+    text = (mechanisms / "pendulum.yaml").read_text()
+    for t in (text, text.encode(), text.encode("utf-16"), bytearray(text.encode())):
+        s = mo2d.parse_scene(t)
+        assert s.name == "pendulum" and s.parameters["L"] == 1.0 and s.duration == 2
+    with pytest.raises(TypeError, match="parse_scene: the text of a scene .*not PosixPath.*"
+                                        "load_scene"):
+        mo2d.parse_scene(mechanisms / "pendulum.yaml")
+
+
+def test_add_body_nodes_of_the_wrong_form_name_the_body():
+    s = mo2d.System("s")
+    with pytest.raises(TypeError, match=r"add_body\('link'\): nodes: a dict .* not str"):
+        s.add_body("link", nodes="abc", mass=1.0)
+    with pytest.raises(TypeError, match=r"add_body\('link'\): nodes: node 'P': a position \(x, y\)"):
+        s.add_body("link", nodes={"O": (0, 0), "P": "far"}, mass=1.0)
+    with pytest.raises(TypeError, match=r"item 0: \(name, \(x, y\)\)"):
+        s.add_body("link", nodes=[1, 2], mass=1.0)
+
+
+def test_a_count_beyond_int_names_the_argument():
+    s = mo2d.System("pendulum")
+    s.add_ground_node("O", (0, 0))
+    s.add_body("link", nodes={"O": (0, 0), "P": (1, 0)}, mass=1.0, com="P")
+    s.add_revolute("pivot", "ground.O", "link.O", actuated=True)
+    s.add_coordinate("link.angle", rate=[("link.w", 1.0)])
+    model = mo2d.build_model(s)
+    with pytest.raises(mo2d.Error, match="samples = 1000000000000 is out of range: at most "
+                                         "2147483647"):
+        mo2d.inverse_dynamics(model, [("link.angle", "t")], samples=10**12)
+    with pytest.raises(TypeError, match="samples: an integer, not float"):
+        mo2d.inverse_dynamics(model, [("link.angle", "t")], samples=11.5)
+    with pytest.raises(mo2d.Error, match="max_steps = 1000000000000 is out of range"):
+        mo2d.forward_dynamics(model, mo2d.consistent_state(model, velocities=[("link.w", 0.0)]),
+                              1.0, max_steps=10**12)
+    r = mo2d.inverse_dynamics(model, [("link.angle", "t")], samples=11)
+    assert r.t.shape == (11,)

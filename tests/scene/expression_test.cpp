@@ -123,6 +123,38 @@ TEST(Expression, ParseErrorsGiveTheColumn) {
   }
 }
 
+std::string parse_error(const std::string& text) {
+  try {
+    Expression::parse(text);
+  } catch (const ExpressionError& e) {
+    return e.what();
+  }
+  return "";
+}
+
+std::string repeated(const std::string& s, int n) {
+  std::string out;
+  for (int k = 0; k < n; ++k) out += s;
+  return out;
+}
+
+// The limits docs/fuzzing.md states: 200 levels of nesting (each a parenthesis, a function call,
+// a unary sign or an exponent, not each rule of the grammar on the way) and 10 000 terms.
+TEST(Expression, NestingAndSizeLimitsAreTheDocumentedOnes) {
+  EXPECT_DOUBLE_EQ(at(repeated("(", 200) + "t" + repeated(")", 200), 0.25).v, 0.25);
+  EXPECT_DOUBLE_EQ(at(repeated("abs(", 200) + "t" + repeated(")", 200), -0.5).v, 0.5);
+  EXPECT_DOUBLE_EQ(at(repeated("-", 200) + "t", 0.5).v, 0.5);
+  EXPECT_DOUBLE_EQ(at(repeated("(1 + ", 200) + "t" + repeated(")", 200), 0).v, 200);
+  const std::string deep = parse_error(repeated("(", 201) + "t" + repeated(")", 201));
+  EXPECT_NE(deep.find("expression nested too deeply (more than 200 levels"), std::string::npos)
+      << deep;
+  EXPECT_NE(parse_error(repeated("-", 201) + "t").find("more than 200 levels"), std::string::npos);
+  // 10 000 terms (9 999 additions): accepted and evaluated; one more is refused
+  EXPECT_DOUBLE_EQ(at("1" + repeated(" + 1", 9999), 0).v, 10000);
+  const std::string longer = parse_error("1" + repeated(" + 1", 10000));
+  EXPECT_NE(longer.find("expression too long (more than 10000 terms"), std::string::npos) << longer;
+}
+
 TEST(Expression, UnboundNameGivesColumnAndSuggestion) {
   Expression e = Expression::parse("2 * omgea * t");
   const std::vector<std::string> params = {"omega", "L"};

@@ -261,6 +261,12 @@ TEST_F(CsvTable, ErrorsGiveFileAndLine) {
   EXPECT_EQ(error("angle,lift\n0,1\n1,2\n", {.x = "angel"}),
             "t.csv:1: table 'cam': no column 'angel' (did you mean 'angle'?); the header has "
             "'angle', 'lift'");
+  // a value finite as written but not once scaled: at its own line, not at the last one
+  EXPECT_EQ(error("a,b\n0,1\n1,1e10\n2,3\n", {.scale_y = 1e300}),
+            "t.csv:3: table 'cam': column 'b': 1e10 times scale_y = 1e+300 is out of range (inf)");
+  EXPECT_EQ(error("a,b\n0,1\n-1e10,2\n2,3\n", {.scale_x = 1e300}),
+            "t.csv:3: table 'cam': column 'a': -1e10 times scale_x = 1e+300 is out of range "
+            "(-inf)");
   EXPECT_EQ(error("a,b\n0,1\n"), "t.csv:2: table 'cam': at least 2 points are needed, got 1");
   EXPECT_EQ(error("0,1\n1,2\n"),
             "t.csv:1: table 'cam': the first row holds numbers: a header row of column names is "
