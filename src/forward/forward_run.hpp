@@ -69,8 +69,15 @@ bool switches_chains(const Model& m);
 Trajectory forward_chain_switching(const Model& m, const State& initial, const ForwardOptions& o);
 
 // The budget of a forward run (max_steps, max_seconds, progress monitor) with the hint its
-// error gives besides the budget (integrator, tolerances, step).
-detail::RunBudget::Settings forward_budget(const Model& m, const ForwardOptions& o,
+// error gives besides the budget (integrator, tolerances, step), and the cause of a collapse of
+// the step size named from d (collapse_cause).
+detail::RunBudget::Settings forward_budget(const Model& m, ForwardData& d, const ForwardOptions& o,
                                            std::string hint);
+
+// Why the step size collapsed at (t, y = (q0, q1, ...)) (collapse_cause.cpp): a blow-up (kinetic
+// energy beyond 1e6 x the mechanism's energy scale, naming the fastest quasi-velocity), a
+// singular position (the constraint Jacobian's pivot ratio below o.singular_warning, naming the
+// dependent rows), or a stiff or non-smooth law; each with what helps. "" if y is null.
+std::string collapse_cause(ForwardData& d, double t, const double* y);
 
 }  // namespace mo2d::detail

@@ -161,7 +161,7 @@ void Recorder::finish() {
   flush_near();
 }
 
-detail::RunBudget::Settings forward_budget(const Model& m, const ForwardOptions& o,
+detail::RunBudget::Settings forward_budget(const Model& m, ForwardData& d, const ForwardOptions& o,
                                            std::string hint) {
   return {.run = "forward dynamics of '" + m.name + "' (" + to_string(o.integrator) + ")",
           .name = m.name,
@@ -171,7 +171,8 @@ detail::RunBudget::Settings forward_budget(const Model& m, const ForwardOptions&
           .max_seconds = o.max_seconds,
           .monitor = o.monitor,
           .interval = o.monitor_interval,
-          .hint = std::move(hint)};
+          .hint = std::move(hint),
+          .collapse_cause = [&d](double t, const double* y) { return collapse_cause(d, t, y); }};
 }
 
 }  // namespace mo2d::detail

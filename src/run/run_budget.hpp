@@ -28,11 +28,15 @@ class RunBudget {
     double interval = 1;         // s between monitor calls
     std::string hint;            // what to change besides the budget (integrator, tolerances)
     std::string unit = "steps";  // what `steps` counts (inverse dynamics: samples)
+    // Why the step collapsed at (t, y), and what will help (forward: collapse_cause.cpp); called
+    // once, when check() ends the run for a collapse (y: the state check() was given, or null).
+    std::function<std::string(double t, const double* y)> collapse_cause{};
   };
   explicit RunBudget(Settings s);
 
-  // Throws when the budget is out; calls the monitor when due. Cheap (one clock read).
-  void check(double t, long steps, double step_size);
+  // Throws when the budget is out or the step size has collapsed (below); calls the monitor when
+  // due. Cheap (one clock read). y: the state at t (for Settings::collapse_cause), or null.
+  void check(double t, long steps, double step_size, const double* y = nullptr);
   bool out_of_time() const;  // the wall-clock budget is spent (no throw: for C callbacks)
   [[noreturn]] void throw_exhausted(double t, long steps, double step_size) const;
   bool stalled() const { return stalled_; }
@@ -45,6 +49,13 @@ class RunBudget {
   double start_ = 0, next_report_ = 0;
   bool stalled_ = false;
   std::string stall_warning_;
+  // Collapse of the step size relative to the run's own time scale (check_collapse):
+  // ref_step_ is the accepted step lengths' recent maximum (decaying by kRefDecay per accepted
+  // step), collapsed_ the checks in a row, since the last healthy one, whose step was collapsed.
+  long last_steps_ = 0;
+  double ref_step_ = 0;
+  long collapsed_ = 0;
+  void check_collapse(double t, long steps, double step_size, const double* y);
 };
 
 }  // namespace mo2d::detail
