@@ -151,12 +151,8 @@ joints:
   pivot: {type: revolute, node_a: ground.O, node_b: rod.A}
 loads:
   gravity: [0, -9.81]
-  torques: {surge: {body: rod, torque: "exp(1000 * t)"
-}
-}
-initial : {
-velocities : { rod.w : 0 }
-}
+  torques: {surge: {body: rod, torque: "exp(1000 * t)"}}
+initial: {velocities: {rod.w: 0}}
 run: {solve: forward, duration: 10, samples: 11}
 )yaml",
                                   "blowup.yaml");
