@@ -156,39 +156,46 @@ void RunBudget::check(double t, long steps, double step_size, const double* y) {
 }
 
 namespace {
-// A step below kCollapseRatio x the recent accepted steps (or one at which the rest of the run
-// would need more than kHopeless x max_steps steps) is collapsed; kSustain such checks in a row,
-// with no healthy one between (a step of at least kHealthy x the recent ones, and within the step
-// budget), end the run. The recent steps' maximum decays by kRefDecay per accepted step: a step
-// size that shrinks steadily (a motion that speeds up without bound) is judged by the budget test,
-// a sudden collapse (1e-3 s steps, then 1e-14 s) by the ratio. A legitimate singular passage on
-// cvode_bdf takes steps of 1e-6 to 1e-8 s among 1e-3 s ones (the 17- to 40-loop four-bar
-// chains): 1e-5 of the recent steps and above, far from the ratio.
+// Two kinds of collapse of the step size, each judged after the run's first kStartSteps steps
+// (an integrator's start-up steps are small):
+// - sudden: a step below kCollapseRatio x the recent accepted steps (their maximum, decaying by
+//   kRefDecay per accepted step that is not itself collapsed), for kSustain checks in a row and
+//   kSustainSteps accepted steps, with no healthy step (kHealthy x the recent ones) between: the
+//   40-loop four-bar chain on cvode_bdf went from 1e-3 s steps to 1e-8 ... 1e-14 s. A legitimate
+//   singular passage on cvode_bdf takes steps of 1e-6 to 1e-8 s among 1e-3 s ones: 1e-5 of the
+//   recent steps and above, far from the ratio.
+// - steady: a step so short that the rest of the run would need more than kHopeless x max_steps
+//   steps, for 10 x as long (a motion that speeds up without bound: the steps shrink a little
+//   each, and the recent ones shrink with them; a passage's short steps recover within it).
 constexpr double kCollapseRatio = 1e-9, kHealthy = 1e-3, kRefDecay = 0.97, kHopeless = 10;
-constexpr long kSustain = 100;
+constexpr long kStartSteps = 10, kSustain = 100, kSustainSteps = 10;
 }  // namespace
 
 void RunBudget::check_collapse(double t, long steps, double step_size, const double* y) {
   if (!(step_size > 0)) return;
-  if (steps > last_steps_) {  // accepted steps since the last check: the reference decays
-    ref_step_ *= std::pow(kRefDecay, static_cast<double>(std::min(steps - last_steps_, 1000L)));
-    ref_step_ = std::max(ref_step_, step_size);
+  const bool tiny = step_size < kCollapseRatio * ref_step_;
+  if (steps > last_steps_) {  // accepted steps since the last check
+    if (!tiny)
+      ref_step_ =
+          std::max(step_size, ref_step_ * std::pow(kRefDecay, static_cast<double>(std::min(
+                                                                  steps - last_steps_, 1000L))));
     last_steps_ = steps;
   }
+  if (steps < kStartSteps) return;
   const double remaining = s_.t1 - t;
   const bool hopeless = s_.max_steps > 0 && remaining > kHopeless * s_.max_steps * step_size;
-  const bool tiny = step_size < kCollapseRatio * ref_step_;
-  if (!tiny && !hopeless) {
-    if (step_size >= kHealthy * ref_step_ &&
-        !(s_.max_steps > 0 && remaining > s_.max_steps * step_size))
-      collapsed_ = 0;
-    return;
-  }
-  if (++collapsed_ < kSustain) return;
+  if (!tiny && step_size >= kHealthy * ref_step_) tiny_checks_ = 0;
+  if (tiny && tiny_checks_++ == 0) tiny_from_ = steps;
+  if (!hopeless) hopeless_checks_ = 0;
+  if (hopeless && hopeless_checks_++ == 0) hopeless_from_ = steps;
+  const bool sudden = tiny && tiny_checks_ >= kSustain && steps - tiny_from_ >= kSustainSteps;
+  const bool steady =
+      hopeless && hopeless_checks_ >= 10 * kSustain && steps - hopeless_from_ >= 10 * kSustainSteps;
+  if (!sudden && !steady) return;
   std::ostringstream m;
   m << s_.run << ": the step size collapsed to " << fmt(step_size) << " s at t = " << fmt(t)
     << " s after " << steps << " " << s_.unit;
-  if (tiny)
+  if (sudden)
     m << " (" << fmt(step_size / ref_step_) << " of the steps just before, " << fmt(ref_step_)
       << " s)";
   else

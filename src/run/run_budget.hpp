@@ -49,12 +49,13 @@ class RunBudget {
   double start_ = 0, next_report_ = 0;
   bool stalled_ = false;
   std::string stall_warning_;
-  // Collapse of the step size relative to the run's own time scale (check_collapse):
-  // ref_step_ is the accepted step lengths' recent maximum (decaying by kRefDecay per accepted
-  // step), collapsed_ the checks in a row, since the last healthy one, whose step was collapsed.
+  // Collapse of the step size relative to the run's own steps (check_collapse, budget.cpp):
+  // ref_step_ the recent accepted steps' decaying maximum; the checks in a row whose step was
+  // collapsed (tiny: against ref_step_; hopeless: against the step budget) and the step count
+  // when each run of them began.
   long last_steps_ = 0;
   double ref_step_ = 0;
-  long collapsed_ = 0;
+  long tiny_checks_ = 0, tiny_from_ = 0, hopeless_checks_ = 0, hopeless_from_ = 0;
   void check_collapse(double t, long steps, double step_size, const double* y);
 };
 

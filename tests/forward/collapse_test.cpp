@@ -113,8 +113,9 @@ TEST(StepCollapse, SuddenCollapseEndsTheRunWithItsCause) {
   for (int k = 0; k < 300; ++k) b.check(t += 1e-3, ++steps, 1e-3);
   std::string msg;
   int checks = 0;
-  try {
-    for (; checks < 1000; ++checks) b.check(t, steps, 1e-14);  // no step accepted any more
+  try {  // steps of 1e-14 s, a few tries (right-hand sides) each
+    for (; checks < 1000; ++checks)
+      b.check(t += 1e-14 * (checks % 4 == 0), steps += checks % 4 == 0, 1e-14);
   } catch (const Error& e) {
     msg = e.what();
   }
@@ -123,6 +124,14 @@ TEST(StepCollapse, SuddenCollapseEndsTheRunWithItsCause) {
   EXPECT_NE(msg.find(": the cause"), std::string::npos) << msg;
   EXPECT_EQ(asked, 1);
   EXPECT_LT(checks, 200);
+  // 100 checks in a row over a single accepted step (a Newton matrix by difference quotients)
+  detail::RunBudget c({.run = "run", .name = "m", .t0 = 0, .t1 = 1, .max_steps = 10'000'000});
+  t = 0, steps = 0;
+  for (int k = 0; k < 300; ++k) c.check(t += 1e-3, ++steps, 1e-3);
+  EXPECT_EQ(error_of([&] {
+              for (int k = 0; k < 500; ++k) c.check(t, steps, 1e-14);
+            }),
+            "");
 }
 
 // A step size that shrinks steadily, 0.1 % per step, from 1e-3 s: judged by the step budget (the
@@ -136,6 +145,15 @@ TEST(StepCollapse, SteadilyShrinkingStepEndsOnTheStepBudget) {
   });
   EXPECT_NE(msg.find("more than 10 x the step budget of 1000000"), std::string::npos) << msg;
   EXPECT_LT(steps, 20'000);
+  // a passage: 200 steps of 1e-8 s among 1e-3 s ones, no error
+  detail::RunBudget c({.run = "run", .name = "m", .t0 = 0, .t1 = 10, .max_steps = 10'000'000});
+  t = 0, steps = 0;
+  EXPECT_EQ(error_of([&] {
+              for (int k = 0; k < 300; ++k) c.check(t += 1e-3, ++steps, 1e-3);
+              for (int k = 0; k < 200; ++k) c.check(t += 1e-8, ++steps, 1e-8);
+              for (int k = 0; k < 300; ++k) c.check(t += 1e-3, ++steps, 1e-3);
+            }),
+            "");
 }
 
 // A torque exp(1000 t) on a pendulum: its rate grows without bound and the steps shrink with it.
