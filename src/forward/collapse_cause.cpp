@@ -3,6 +3,8 @@
 // (the constraint Jacobian loses rank), or else a stiff or non-smooth law; each with what helps.
 #include <algorithm>
 #include <cmath>
+#include <string>
+#include <vector>
 
 #include "forward/forward_run.hpp"
 #include "mo2d/dynamics.hpp"
@@ -34,7 +36,8 @@ const char* singular_help(Integrator i) {
 
 }  // namespace
 
-std::string collapse_cause(ForwardData& d, double t, const double* y) {
+std::string collapse_cause(ForwardData& d, double t, const double* y,
+                           const std::vector<int>& terms) {
   const Model& m = d.m;
   if (y == nullptr) return {};
   const VectorXd q0 = Eigen::Map<const VectorXd>(y, m.n0);
@@ -50,12 +53,24 @@ std::string collapse_cause(ForwardData& d, double t, const double* y) {
     for (int j = 1; j < m.n1; ++j)
       if (std::abs(q1[j] / d.col_scale[j]) > std::abs(q1[fastest] / d.col_scale[fastest]))
         fastest = j;
-    return "a blow-up: the kinetic energy has grown to " + fmt(kinetic) + " J, " +
-           fmt(kinetic / scale) +
-           " times the mechanism's energy scale (mass x g x size = " + fmt(scale) + " J), '" +
-           m.rate_labels[fastest] + "' = " + fmt(q1[fastest]) +
-           ": a load or effort law drives the motion without bound (e.g. one growing like " +
-           "exp(t)); no integrator or tolerance follows it: bound the law, or end the run earlier";
+    double work = 0;  // of the loads and inputs, integrated with the state
+    for (std::size_t k = 0; k < terms.size(); ++k)
+      if (terms[k] == kInputWork || terms[k] == kLoadWork) work += y[m.n0 + m.n1 + k];
+    const std::string grown =
+        "the kinetic energy has grown to " + fmt(kinetic) + " J, " + fmt(kinetic / scale) +
+        " times the mechanism's energy scale (mass x g x size = " + fmt(scale) + " J), '" +
+        m.rate_labels[fastest] + "' = " + fmt(q1[fastest]);
+    if (work >= 0.5 * kinetic)
+      return "a blow-up: " + grown + ", supplied by the work of the loads and inputs (" +
+             fmt(work) + " J): a load or effort law drives the motion without bound (e.g. one " +
+             "growing like exp(t)); no integrator or tolerance follows it: bound the law, or end " +
+             "the run earlier";
+    return "an instability of the integrator: " + grown + ", not supplied by the loads and " +
+           "inputs (their work " + fmt(work) + " J): a stiff element (a stiff spring, a large " +
+           "gain) beyond " + to_string(d.o.integrator) + "'s stability: " +
+           (d.o.integrator == Integrator::cvode_bdf ? "tighter rtol/atol"
+                                                    : "cvode_bdf (stiff mechanisms)") +
+           ", or a softer element";
   }
   if (m.m1 > 0) {
     // below kDirectAccept the accelerations are regularized (ForwardData): the step collapses

@@ -273,7 +273,8 @@ void run_cvode(const Model& m, ForwardData& d, const State& s0, const ForwardOpt
   std::unique_ptr<void, void (*)(void*)> mem_guard(mem, [](void* p) { CVodeFree(&p); });
   RunBudget budget(forward_budget(m, d, o,
                                   bdf ? "loosen rtol/atol, or try dopri5 (non-stiff mechanisms)"
-                                      : "loosen rtol/atol, or try cvode_bdf (stiff mechanisms)"));
+                                      : "loosen rtol/atol, or try cvode_bdf (stiff mechanisms)",
+                                  terms));
   CvodeUser user{&m, &d, VectorXd(m.n0), VectorXd(m.n1), terms, false, {}, &budget, mem, nullptr,
                  {}, {}};
   check_flag(CVodeInit(mem, cv_rhs, o.t0, y), "CVodeInit", o.t0);

@@ -57,7 +57,8 @@ class RkDriver {
         budget_(forward_budget(m, d, o,
                                tab.embedded
                                    ? "loosen rtol/atol, or try cvode_bdf (stiff mechanisms)"
-                                   : "use a longer step")),
+                                   : "use a longer step",
+                               {kInputWork, kLoadWork, kConstraintWork, kDissipated})),
         n_(m.n0 + m.n1 + kEnergyTerms),
         q0_(m.n0),
         q1_(m.n1),

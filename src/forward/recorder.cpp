@@ -162,7 +162,7 @@ void Recorder::finish() {
 }
 
 detail::RunBudget::Settings forward_budget(const Model& m, ForwardData& d, const ForwardOptions& o,
-                                           std::string hint) {
+                                           std::string hint, std::vector<int> terms) {
   return {.run = "forward dynamics of '" + m.name + "' (" + to_string(o.integrator) + ")",
           .name = m.name,
           .t0 = o.t0,
@@ -172,7 +172,9 @@ detail::RunBudget::Settings forward_budget(const Model& m, ForwardData& d, const
           .monitor = o.monitor,
           .interval = o.monitor_interval,
           .hint = std::move(hint),
-          .collapse_cause = [&d](double t, const double* y) { return collapse_cause(d, t, y); }};
+          .collapse_cause = [&d, terms = std::move(terms)](double t, const double* y) {
+            return collapse_cause(d, t, y, terms);
+          }};
 }
 
 }  // namespace mo2d::detail

@@ -219,11 +219,11 @@ TEST(StepCollapse, CauseAtASingularPositionNamesIt) {
   }
   VectorXd y(m.n0 + m.n1);
   y << q0, q1;
-  const std::string flat = detail::collapse_cause(d, 0.0, y.data());
+  const std::string flat = detail::collapse_cause(d, 0.0, y.data(), {});
   EXPECT_NE(flat.find("a singular position"), std::string::npos) << flat;
   EXPECT_NE(flat.find("rk4, dopri5, erk6 and erk8 step over"), std::string::npos) << flat;
   y << m.q0, q1;
-  const std::string upright = detail::collapse_cause(d, 0.0, y.data());
+  const std::string upright = detail::collapse_cause(d, 0.0, y.data(), {});
   EXPECT_NE(upright.find("neither a singular position nor a blow-up"), std::string::npos)
       << upright;
 }
