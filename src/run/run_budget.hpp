@@ -56,6 +56,7 @@ class RunBudget {
   long last_steps_ = 0;
   double ref_step_ = 0;
   long tiny_checks_ = 0, tiny_from_ = 0, hopeless_checks_ = 0, hopeless_from_ = 0;
+  double hopeless_step_ = 0;  // the step size at the first of the hopeless checks
   void check_collapse(double t, long steps, double step_size, const double* y);
 };
 
