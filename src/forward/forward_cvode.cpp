@@ -9,6 +9,7 @@
 
 #include <Eigen/Cholesky>
 #include <algorithm>
+#include <cfloat>
 #include <cmath>
 #include <exception>
 #include <memory>
@@ -116,34 +117,48 @@ int cv_rhs(realtype t, N_Vector y, N_Vector ydot, void* user) {
   return evaluate_rhs(u, t, N_VGetArrayPointer(y), N_VGetArrayPointer(ydot));
 }
 
+// Forward difference quotients of the whole right-hand side (CVODE's own scheme, increments
+// sqrt(eps) max(|y_j|, atol)): the Newton matrix where the accelerations are regularized (next to
+// a singular configuration), so that it is the derivative of what is integrated there.
+int difference_quotients(CvodeUser* u, double t, N_Vector y, N_Vector fy, SUNMatrix J) {
+  const sunindextype n = N_VGetLength(y);
+  const double* yd = N_VGetArrayPointer(y);
+  const double* f0 = N_VGetArrayPointer(fy);
+  std::vector<double> yp(yd, yd + n), fp(n);
+  for (sunindextype j = 0; j < n; ++j) {
+    const double h = std::sqrt(DBL_EPSILON) * std::max(std::abs(yd[j]), u->d->o.atol);
+    yp[j] = yd[j] + h;
+    if (const int flag = evaluate_rhs(u, t, yp.data(), fp.data())) return flag;
+    yp[j] = yd[j];
+    double* col = SUNDenseMatrix_Column(J, j);
+    for (sunindextype i = 0; i < n; ++i) col[i] = (fp[i] - f0[i]) / h;
+  }
+  return 0;
+}
+
 // The Jacobian of y' = (q1.head(n0), a1(t, q0, q1), energy rates) for BDF's Newton matrix:
 //   [0, [I 0], 0;  da/dq0, da/dq1, 0;  0, 0, 0]
-// with da/dq0, da/dq1 from acceleration_jacobian and the energy rows from energy_rate_jacobian:
-// exact directional derivatives of the unregularized accelerations, minimum-norm ones where the
-// constraint rows are dependent, also where the evaluation itself is regularized (next to a
-// singular configuration). Difference quotients of what is integrated there were used before
-// (ed2d141): the augmented Lagrangian's accelerations are accurate to ~1e-9 relative only (its
-// residual, measured 5e-10 to 2e-9 over the 17-loop chain's passage, warm-started from the last
-// evaluation's multipliers, so not even a function of the state), and at the flat position of a
-// four-bar chain the node ordinates pass through 0, where a quotient's increment sqrt(eps)
-// max(|y|, atol) is 1.5e-18 m: the quotients were that noise over the increment, Newton failed at
-// every step size and the step collapsed to 1e-14 s (the 17-, 20- and 40-loop chains; CVODE's own
-// quotients, the scheme before ed2d141, collapse on the 11- and 17-loop chains). A Newton matrix
-// needs only to approximate the derivative; the exact one of the unregularized accelerations does,
-// and carries no noise.
-int cv_jac(realtype t, N_Vector y, N_Vector /*fy*/, SUNMatrix J, void* user, N_Vector /*tmp1*/,
+// with da/dq0, da/dq1 from acceleration_jacobian and the energy rows from energy_rate_jacobian
+// (exact directional derivatives); where the evaluation is regularized (a singular configuration
+// near), difference quotients of what is integrated there.
+int cv_jac(realtype t, N_Vector y, N_Vector fy, SUNMatrix J, void* user, N_Vector /*tmp1*/,
            N_Vector /*tmp2*/, N_Vector /*tmp3*/) {
   auto* u = static_cast<CvodeUser*>(user);
   const Model& m = *u->m;
   const double* yd = N_VGetArrayPointer(y);
   u->q0 = Eigen::Map<const VectorXd>(yd, m.n0);
   u->q1 = Eigen::Map<const VectorXd>(yd + m.n0, m.n1);
+  const long regularized = u->d->stats.regularized_evaluations;
+  bool quotients = false;
   if (const int flag = guarded(u, [&] {
         acceleration_jacobian(*u->d, t, u->q0, u->q1, u->jac);
-        energy_rate_jacobian(*u->d, t, u->q0, u->q1, u->jac, u->terms, u->energy_rows);
+        quotients = u->jac.singular || u->d->stats.regularized_evaluations > regularized;
+        if (!quotients)
+          energy_rate_jacobian(*u->d, t, u->q0, u->q1, u->jac, u->terms, u->energy_rows);
         return 0;
       }))
     return flag;
+  if (quotients) return difference_quotients(u, t, y, fy, J);
   if (!u->jac.da_dq0.allFinite() || !u->jac.da_dq1.allFinite()) {
     u->last_error = "the Jacobian of the accelerations is not finite at t = " + fmt(t) + " s";
     return 1;
