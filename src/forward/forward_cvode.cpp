@@ -47,7 +47,7 @@ struct CvodeUser {
 
 // The budget is checked at every right-hand side evaluation (a single output interval can take
 // arbitrarily long); when it runs out the evaluation fails unrecoverably and run_cvode rethrows.
-bool budget_ok(CvodeUser* u) {
+bool budget_ok(CvodeUser* u, const double* y) {
   long steps = 0;
   double h = 0, t = 0;
   CVodeGetNumSteps(u->mem, &steps);
@@ -55,7 +55,7 @@ bool budget_ok(CvodeUser* u) {
   CVodeGetCurrentStep(u->mem, &h);
   CVodeGetCurrentTime(u->mem, &t);  // the time reached (not the stage's trial time)
   try {
-    u->budget->check(t, steps, h);
+    u->budget->check(t, steps, h, y);
   } catch (...) {  // the budget's Error, or the monitor's own: not through CVODE's C frames
     u->kept = std::current_exception();
     return false;
@@ -116,7 +116,7 @@ int evaluate_rhs(CvodeUser* u, double t, const double* yd, double* out) {
 
 int cv_rhs(realtype t, N_Vector y, N_Vector ydot, void* user) {
   auto* u = static_cast<CvodeUser*>(user);
-  if (!budget_ok(u)) return -1;  // unrecoverable: the run stops
+  if (!budget_ok(u, N_VGetArrayPointer(y))) return -1;  // unrecoverable: the run stops
   return evaluate_rhs(u, t, N_VGetArrayPointer(y), N_VGetArrayPointer(ydot));
 }
 
@@ -338,9 +338,10 @@ void run_cvode(const Model& m, ForwardData& d, const State& s0, const ForwardOpt
   void* mem = CVodeCreate(bdf ? CV_BDF : CV_ADAMS, ctx);
   if (!mem) throw Error("SUNDIALS CVodeCreate failed", "CVodeCreate", o.t0);
   std::unique_ptr<void, void (*)(void*)> mem_guard(mem, [](void* p) { CVodeFree(&p); });
-  RunBudget budget(forward_budget(m, o,
+  RunBudget budget(forward_budget(m, d, o,
                                   bdf ? "loosen rtol/atol, or try dopri5 (non-stiff mechanisms)"
-                                      : "loosen rtol/atol, or try cvode_bdf (stiff mechanisms)"));
+                                      : "loosen rtol/atol, or try cvode_bdf (stiff mechanisms)",
+                                  terms));
   CvodeUser user{&m, &d, VectorXd(m.n0), VectorXd(m.n1), terms, false, {}, &budget, mem, 0, nullptr,
                  {}, {}};
   check_flag(CVodeInit(mem, cv_rhs, o.t0, y), "CVodeInit", o.t0);

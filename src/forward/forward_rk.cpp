@@ -57,10 +57,11 @@ class RkDriver {
         d_(d),
         o_(o),
         tab_(tab),
-        budget_(forward_budget(m, o,
+        budget_(forward_budget(m, d, o,
                                tab.embedded
                                    ? "loosen rtol/atol, or try cvode_bdf (stiff mechanisms)"
-                                   : "use a longer step")),
+                                   : "use a longer step",
+                               {kInputWork, kLoadWork, kConstraintWork, kDissipated})),
         n_(m.n0 + m.n1 + kEnergyTerms),
         q0_(m.n0),
         q1_(m.n1),
@@ -126,7 +127,7 @@ class RkDriver {
       t = t_new;
       y.swap(y_new);
       if (held_) restore_held(m_, held_end_), held_start_.swap(held_end_);
-      budget_.check(t, ++d_.stats.steps, used);
+      budget_.check(t, ++d_.stats.steps, used, y.data());
     }
     d_.stats.t_end = t;
     if (!budget_.stall_warning().empty() && d_.stats.warnings.size() < 20)

@@ -80,8 +80,19 @@ bool switches_chains(const Model& m);
 Trajectory forward_chain_switching(const Model& m, const State& initial, const ForwardOptions& o);
 
 // The budget of a forward run (max_steps, max_seconds, progress monitor) with the hint its
-// error gives besides the budget (integrator, tolerances, step).
-detail::RunBudget::Settings forward_budget(const Model& m, const ForwardOptions& o,
-                                           std::string hint);
+// error gives besides the budget (integrator, tolerances, step), and the cause of a collapse of
+// the step size named from d (collapse_cause).
+// terms: the EnergyTerms carried in the state after (q0, q1), in order.
+detail::RunBudget::Settings forward_budget(const Model& m, ForwardData& d, const ForwardOptions& o,
+                                           std::string hint, std::vector<int> terms);
+
+// Why the step size collapsed at (t, y = (q0, q1, the energy terms `terms`)) (collapse_cause.cpp):
+// a blow-up (kinetic energy beyond 1e6 x the mechanism's energy scale, naming the fastest
+// quasi-velocity: driven by a law when the loads' and inputs' work supplied it, else an
+// instability of the integrator on a stiff element), a singular position (the constraint
+// Jacobian's pivot ratio below 1e-2, naming the dependent rows), or a stiff or non-smooth law;
+// each with what helps. "" if y is null.
+std::string collapse_cause(ForwardData& d, double t, const double* y,
+                           const std::vector<int>& terms);
 
 }  // namespace mo2d::detail

@@ -161,8 +161,8 @@ void Recorder::finish() {
   flush_near();
 }
 
-detail::RunBudget::Settings forward_budget(const Model& m, const ForwardOptions& o,
-                                           std::string hint) {
+detail::RunBudget::Settings forward_budget(const Model& m, ForwardData& d, const ForwardOptions& o,
+                                           std::string hint, std::vector<int> terms) {
   return {.run = "forward dynamics of '" + m.name + "' (" + to_string(o.integrator) + ")",
           .name = m.name,
           .t0 = o.t0,
@@ -171,7 +171,10 @@ detail::RunBudget::Settings forward_budget(const Model& m, const ForwardOptions&
           .max_seconds = o.max_seconds,
           .monitor = o.monitor,
           .interval = o.monitor_interval,
-          .hint = std::move(hint)};
+          .hint = std::move(hint),
+          .collapse_cause = [&d, terms = std::move(terms)](double t, const double* y) {
+            return collapse_cause(d, t, y, terms);
+          }};
 }
 
 }  // namespace mo2d::detail

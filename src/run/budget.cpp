@@ -154,8 +154,9 @@ bool RunBudget::out_of_time() const {
   return s_.max_seconds > 0 && std::isfinite(s_.max_seconds) && elapsed() > s_.max_seconds;
 }
 
-void RunBudget::check(double t, long steps, double step_size) {
+void RunBudget::check(double t, long steps, double step_size, const double* y) {
   if (s_.max_steps > 0 && steps > s_.max_steps) throw_exhausted(t, steps, step_size);
+  check_collapse(t, steps, step_size, y);
   const double now = wall_seconds();
   if (s_.max_seconds > 0 && std::isfinite(s_.max_seconds) && now - start_ > s_.max_seconds)
     throw_exhausted(t, steps, step_size);
@@ -186,6 +187,64 @@ void RunBudget::check(double t, long steps, double step_size) {
     p.stalled = collapsed;
     s_.monitor(p);
   }
+}
+
+namespace {
+// Two kinds of collapse of the step size, each judged after the run's first kStartSteps steps
+// (an integrator's start-up steps are small):
+// - sudden: a step below kCollapseRatio x the recent accepted steps (their maximum, decaying by
+//   kRefDecay per accepted step that is not itself collapsed), for kSustain checks in a row and
+//   kSustainSteps accepted steps, with no healthy step (kHealthy x the recent ones) between: the
+//   40-loop four-bar chain on cvode_bdf went from 1e-3 s steps to 1e-8 ... 1e-14 s. A legitimate
+//   singular passage on cvode_bdf takes steps of 1e-6 to 1e-8 s among 1e-3 s ones: 1e-5 of the
+//   recent steps and above, far from the ratio.
+// - steady: a step so short that the rest of the run would need more than kHopeless x max_steps
+//   steps, over 1000 checks and 1000 accepted steps in a row, and still shrinking (halved since
+//   the first of them): a motion that speeds up without bound (the steps shrink a little each,
+//   and the recent ones with them). A singular passage's short steps do not shrink on: the
+//   double four-bar on cvode_bdf under a step budget of 2e5 takes > 100 steps near 3e-8 s.
+constexpr double kCollapseRatio = 1e-9, kHealthy = 1e-3, kRefDecay = 0.97, kHopeless = 10;
+constexpr long kStartSteps = 10, kSustain = 100, kSustainSteps = 10;
+}  // namespace
+
+void RunBudget::check_collapse(double t, long steps, double step_size, const double* y) {
+  if (!(step_size > 0)) return;
+  const bool tiny = step_size < kCollapseRatio * ref_step_;
+  if (steps > last_steps_) {  // accepted steps since the last check
+    if (!tiny)
+      ref_step_ =
+          std::max(step_size, ref_step_ * std::pow(kRefDecay, static_cast<double>(std::min(
+                                                                  steps - last_steps_, 1000L))));
+    last_steps_ = steps;
+  }
+  if (steps < kStartSteps) return;
+  const double remaining = s_.t1 - t;
+  const bool hopeless = s_.max_steps > 0 && remaining > kHopeless * s_.max_steps * step_size;
+  if (!tiny && step_size >= kHealthy * ref_step_) tiny_checks_ = 0;
+  if (tiny && tiny_checks_++ == 0) tiny_from_ = steps;
+  if (!hopeless) hopeless_checks_ = 0;
+  if (hopeless && hopeless_checks_++ == 0) hopeless_from_ = steps, hopeless_step_ = step_size;
+  const bool sudden = tiny && tiny_checks_ >= kSustain && steps - tiny_from_ >= kSustainSteps;
+  const bool steady = hopeless && hopeless_checks_ >= 10 * kSustain &&
+                      steps - hopeless_from_ >= 100 * kSustainSteps &&
+                      step_size <= 0.5 * hopeless_step_;
+  if (!sudden && !steady) return;
+  std::ostringstream m;
+  m << s_.run << ": the step size collapsed to " << fmt(step_size) << " s at t = " << fmt(t)
+    << " s after " << steps << " " << s_.unit;
+  if (sudden)
+    m << " (" << fmt(step_size / ref_step_) << " of the steps just before, " << fmt(ref_step_)
+      << " s)";
+  else
+    m << " (at that size the remaining " << fmt(remaining) << " s need "
+      << fmt(remaining / step_size) << " steps, more than " << fmt(kHopeless)
+      << " x the step budget of " << s_.max_steps << ")";
+  const std::string cause = s_.collapse_cause ? s_.collapse_cause(t, y) : std::string();
+  if (!cause.empty())
+    m << ": " << cause;
+  else if (!s_.hint.empty())
+    m << "; " << s_.hint;
+  throw Error(m.str(), s_.name, t);
 }
 
 void RunBudget::throw_exhausted(double t, long steps, double step_size) const {
