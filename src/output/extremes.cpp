@@ -292,6 +292,11 @@ std::vector<Extreme> locate_extremes(const Model& m, const ForwardOptions& optio
     o.progress = {};
     o.monitor = {};
     o.stop_when = {};
+    // a budget of the run's own size (a re-integration that cannot end, e.g. an end-time step the
+    // floating-point grid cannot take, issue 30 item 1, throws: that extreme is not located)
+    o.max_steps = static_cast<int>(
+        std::min<long>(options.max_steps, std::max<long>(10000, 2 * r.stats.steps)));
+    o.max_seconds = 5 + 2 * r.stats.cpu_seconds;
     const State s{o.t0, r.q0.row(k0).transpose(), r.q1.row(k0).transpose()};
     const Trajectory f = forward_dynamics(m, s, o);
     if (f.time.size() != n) throw Error("extremes: the re-integration stopped early");
