@@ -26,9 +26,14 @@ int forward(const SceneOptions& o) {
   if (scene.run.accuracy == 0 && !scene.run.method_set)  // no method named: kDefaultAccuracy
     r.stats.method = "default " + r.stats.method;
   add_output_columns(model, r, scene.outputs);  // the columns the scene asks for
+  run.progress = {};
+  run.monitor = {};
+  const std::vector<Extreme> extremes =
+      locate_extremes(model, run, r, scene.outputs);  // the peaks between samples
   progress.finish();
   std::printf("mo2d forward dynamics: %s\n", model.name.c_str());
   print_forward_table(model, r, run);
+  print_peaks_table(r, extremes);
   print_tracking_table(tracking_errors(scene, model, r));
   // all outputs land together or not at all (mo2d/output.hpp)
   OutputSet out;
@@ -37,7 +42,8 @@ int forward(const SceneOptions& o) {
             trajectory_csv(
                 r, o.units_row ? trajectory_csv_units(model, r) : std::vector<std::string>{}));
   if (scene.run.json)
-    out.add(output_path(o, scene, "forward.json"), forward_summary(o, scene, model, r, run));
+    out.add(output_path(o, scene, "forward.json"),
+            forward_summary(o, scene, model, r, run, extremes));
   out.commit();
   for (const auto& path : out.paths()) std::printf("  wrote %s\n", path.c_str());
   return 0;

@@ -26,9 +26,12 @@ int inverse(const SceneOptions& o) {
   run.monitor = [&progress](const RunProgress& p) { progress.report(p); };
   Trajectory r = inverse_dynamics(model, scene.motion, run);
   add_output_columns(model, r, scene.outputs);  // the columns the scene asks for
+  const std::vector<Extreme> extremes =
+      locate_extremes(model, scene.motion, run, r, scene.outputs);  // the peaks between samples
   progress.finish();
   std::printf("mo2d inverse dynamics: %s\n", model.name.c_str());
   print_inverse_table(model, r, run);
+  print_peaks_table(r, extremes);
   // all outputs land together or not at all (mo2d/output.hpp)
   OutputSet out;
   if (scene.run.csv)
@@ -36,7 +39,8 @@ int inverse(const SceneOptions& o) {
             trajectory_csv(
                 r, o.units_row ? trajectory_csv_units(model, r) : std::vector<std::string>{}));
   if (scene.run.json)
-    out.add(output_path(o, scene, "inverse.json"), inverse_summary(o, scene, model, r, run));
+    out.add(output_path(o, scene, "inverse.json"),
+            inverse_summary(o, scene, model, r, run, extremes));
   out.commit();
   for (const auto& path : out.paths()) std::printf("  wrote %s\n", path.c_str());
   return 0;

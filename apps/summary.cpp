@@ -1,6 +1,7 @@
 // JSON summaries (nlohmann-json).
 #include "summary.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <nlohmann/json.hpp>
 
@@ -12,18 +13,25 @@ namespace {
 
 using json = nlohmann::ordered_json;
 
-// {label: {max, t_max, min, t_min}} for each column.
-json peaks(const std::vector<std::string>& labels, const Eigen::MatrixXd& values,
-           const Eigen::VectorXd& time) {
+// {label: {max, t_max, min, t_min, located}} for the columns of `labels` (mo2d/extremes.hpp:
+// located between the samples; located false: the largest sample of a fine grid, or of the run).
+json peaks(const std::vector<std::string>& labels, const std::vector<Extreme>& extremes) {
   json out = json::object();
-  if (time.size() == 0) return out;
-  for (size_t k = 0; k < labels.size(); ++k) {
-    Eigen::Index imax, imin;
-    const auto col = values.col(static_cast<Eigen::Index>(k));
-    const double vmax = col.maxCoeff(&imax), vmin = col.minCoeff(&imin);
-    out[labels[k]] = {{"max", vmax}, {"t_max", time[imax]}, {"min", vmin}, {"t_min", time[imin]}};
-  }
+  for (const Extreme& e : extremes)
+    if (std::find(labels.begin(), labels.end(), e.label) != labels.end())
+      out[e.label] = {{"max", e.max},
+                      {"t_max", e.t_max},
+                      {"min", e.min},
+                      {"t_min", e.t_min},
+                      {"located", e.located_max && e.located_min}};
   return out;
+}
+
+// The efforts, reactions and output columns' extremes of a run.
+void add_peaks(json& j, const Trajectory& r, const std::vector<Extreme>& extremes) {
+  j["efforts"] = peaks(r.input_labels, extremes);
+  j["reactions"] = peaks(r.reaction_labels, extremes);
+  if (!r.output_labels.empty()) j["outputs"] = peaks(r.output_labels, extremes);
 }
 
 json header(const SceneOptions& o, const Scene& s, const Model& m, const char* solve,
@@ -73,7 +81,8 @@ json estimated_error(const Trajectory& r) {
 }  // namespace
 
 std::string inverse_summary(const SceneOptions& o, const Scene& s, const Model& m,
-                            const Trajectory& r, const InverseOptions& run) {
+                            const Trajectory& r, const InverseOptions& run,
+                            const std::vector<Extreme>& extremes) {
   json j = header(o, s, m, "inverse", r);
   j["run"] = {{"t0", run.t0},
               {"duration", s.run.duration},
@@ -82,8 +91,7 @@ std::string inverse_summary(const SceneOptions& o, const Scene& s, const Model& 
               {"max_seconds", run.max_seconds},
               {"max_memory", run.max_memory}};
   j["columns"] = columns(m, r);
-  j["efforts"] = peaks(r.input_labels, r.efforts, r.time);
-  j["reactions"] = peaks(r.reaction_labels, r.reactions, r.time);
+  add_peaks(j, r, extremes);
   const bool any = r.time.size() > 0;
   j["max_residuals"] = {{"position", any ? r.residuals.col(0).maxCoeff() : 0.0},
                         {"velocity", any ? r.residuals.col(1).maxCoeff() : 0.0},
@@ -94,7 +102,8 @@ std::string inverse_summary(const SceneOptions& o, const Scene& s, const Model& 
 }
 
 std::string forward_summary(const SceneOptions& o, const Scene& s, const Model& m,
-                            const Trajectory& r, const ForwardOptions& run) {
+                            const Trajectory& r, const ForwardOptions& run,
+                            const std::vector<Extreme>& extremes) {
   json j = header(o, s, m, "forward", r);
   j["run"] = {
       {"t0", run.t0},
@@ -112,8 +121,7 @@ std::string forward_summary(const SceneOptions& o, const Scene& s, const Model& 
       {"max_seconds", run.max_seconds},
       {"max_memory", run.max_memory}};
   j["columns"] = columns(m, r);
-  j["efforts"] = peaks(r.input_labels, r.efforts, r.time);
-  j["reactions"] = peaks(r.reaction_labels, r.reactions, r.time);
+  add_peaks(j, r, extremes);
   const bool any = r.time.size() > 0;
   j["max_residuals"] = {{"position", any ? r.residuals.col(0).maxCoeff() : 0.0},
                         {"velocity", any ? r.residuals.col(1).maxCoeff() : 0.0}};

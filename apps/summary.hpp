@@ -1,5 +1,6 @@
 #pragma once
-// The JSON summary of a run (peaks of the efforts with their times, max residuals, energy error,
+// The JSON summary of a run (peaks of the efforts, reactions and outputs with their times, located
+// between the samples (mo2d/extremes.hpp), max residuals, energy error,
 // CPU time), written next to the CSV: also mo2d's version, the run settings used with the ones
 // the command line overrode, and every CSV column with its unit (trajectory_csv_units).
 #include <string>
@@ -10,9 +11,12 @@
 
 namespace mo2d::cli {
 
+// extremes: locate_extremes of the run (the efforts', reactions' and output columns' peaks)
 std::string inverse_summary(const SceneOptions& o, const Scene& s, const Model& m,
-                            const Trajectory& r, const InverseOptions& run);
+                            const Trajectory& r, const InverseOptions& run,
+                            const std::vector<Extreme>& extremes);
 std::string forward_summary(const SceneOptions& o, const Scene& s, const Model& m,
-                            const Trajectory& r, const ForwardOptions& run);
+                            const Trajectory& r, const ForwardOptions& run,
+                            const std::vector<Extreme>& extremes);
 
 }  // namespace mo2d::cli

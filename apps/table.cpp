@@ -1,6 +1,7 @@
 // Short result tables on stdout.
 #include "table.hpp"
 
+#include <algorithm>
 #include <charconv>
 #include <cmath>
 #include <cstdio>
@@ -18,20 +19,22 @@ void print_inverse_table(const Model& model, const Trajectory& r, const InverseO
       "  %d bodies, %d coordinates, %d quasi-velocities, %d DOF, %d samples over [%g, %g] s\n",
       static_cast<int>(model.bodies.size()), model.n0, model.n1, model.dof,
       static_cast<int>(r.time.size()), run.t0, run.t1);
-  std::printf("  %-24s %14s %10s %14s %10s\n", "input", "max", "at t [s]", "min", "at t [s]");
-  for (int k = 0; k < model.n_inputs(); ++k) {
-    Eigen::Index imax, imin;
-    const double vmax = r.efforts.col(k).maxCoeff(&imax);
-    const double vmin = r.efforts.col(k).minCoeff(&imin);
-    std::printf("  %-24s %14.6f %10.4f %14.6f %10.4f\n", model.inputs[k].label.c_str(), vmax,
-                r.time[imax], vmin, r.time[imin]);
-  }
   std::printf("  max constraint residual: position %.2e m, velocity %.2e, acceleration %.2e\n",
               r.residuals.col(0).maxCoeff(), r.residuals.col(1).maxCoeff(),
               r.residuals.col(2).maxCoeff());
   for (const auto& w : r.stats.warnings) std::printf("  warning: %s\n", w.c_str());
   std::printf("  CPU time %.3f ms (%.2f us per sample)\n", 1e3 * r.stats.cpu_seconds,
               1e6 * r.stats.cpu_seconds / static_cast<double>(r.time.size()));
+}
+
+void print_peaks_table(const Trajectory& r, const std::vector<Extreme>& extremes) {
+  if (r.input_labels.empty()) return;
+  std::printf("  %-24s %18s %14s %18s %14s\n", "input (peaks located)", "max", "at t [s]", "min",
+              "at t [s]");
+  for (const Extreme& e : extremes)
+    if (std::find(r.input_labels.begin(), r.input_labels.end(), e.label) != r.input_labels.end())
+      std::printf("  %-24s %18.11g %14.10f %18.11g %14.10f%s\n", e.label.c_str(), e.max, e.t_max,
+                  e.min, e.t_min, e.located_max && e.located_min ? "" : "  (sampled)");
 }
 
 void print_tracking_table(const std::vector<TrackingError>& tracking) {

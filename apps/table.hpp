@@ -8,10 +8,14 @@
 
 namespace mo2d::cli {
 
-// Sizes, per-input max/min with their times, max residuals and CPU time of an inverse run.
+// Sizes, max residuals and CPU time of an inverse run.
 void print_inverse_table(const Model& model, const Trajectory& r, const InverseOptions& run);
 // Sizes, integrator statistics, residuals and energy balance of a forward run.
 void print_forward_table(const Model& model, const Trajectory& r, const ForwardOptions& run);
+
+// The max and min of each input's effort with their times, located between the samples
+// (locate_extremes, mo2d/extremes.hpp; "(sampled)" where not located).
+void print_peaks_table(const Trajectory& r, const std::vector<Extreme>& extremes);
 
 // The tracking error of each controller (input, coordinate, max |x - r| with its time, final).
 void print_tracking_table(const std::vector<TrackingError>& tracking);

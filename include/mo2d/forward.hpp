@@ -223,9 +223,10 @@ void check_forward_options(const Model& m, const ForwardOptions& options);
 Trajectory forward_dynamics(const Model& m, const State& initial, const ForwardOptions& options);
 
 // Efforts replayed from inverse dynamics, one function per input: `exact` solves the inverse
-// problem at the requested instant (no interpolation error); `from_samples` interpolates a sampled
-// result with cubic Hermite splines (slopes from centred differences), so its accuracy depends on
-// the sampling.
+// problem at the requested instant (no interpolation error; from the last instant asked, walking
+// in steps of the options' sample spacing to an instant farther away, so that the positions stay
+// on their assembly mode); `from_samples` interpolates a sampled result with cubic Hermite splines
+// (slopes from centred differences), so its accuracy depends on the sampling.
 std::vector<std::function<double(double)>> efforts_from_inverse(const Model& m,
                                                                 std::vector<Prescribed> prescribed,
                                                                 const InverseOptions& options = {});

@@ -126,9 +126,16 @@ struct ForwardData {
   Eigen::LLT<MatrixXd> llt_G0, llt_G1;  // of W0 and of H (velocity projection)
 
   // ---- reactions of a recorded state (written by reactions) ------------------------------------
-  VectorXd la;      // slots: body-local M a - f (then the bodies' shares, overwritten)
-  VectorXd w;       // n1: M a - f summed into the variables
-  VectorXd lam_ls;  // m1: least-squares multipliers of A^T lambda = B u - (M a - f), regularized
+  VectorXd la;  // slots: body-local M a - f (then the bodies' shares, overwritten)
+  VectorXd w;   // n1: M a - f summed into the variables
+  // m1: least-squares multipliers of A^T lambda = B u - (M a - f): minimum-norm, from the
+  // regularized normal equations refined on the true residual (src/forward/least_squares.hpp)
+  VectorXd lam_ls;
+  // Their workspace: ls_x (n1) the right-hand side, ls_r (n1) the residual, ls_d (m1) a
+  // correction; dense path: G_ls = A A^T + eps I (m1 x m1) and its Cholesky llt_ls.
+  VectorXd ls_x, ls_r, ls_d;
+  MatrixXd G_ls;
+  Eigen::LLT<MatrixXd> llt_ls;
   std::vector<double> edge_force;  // per merge edge: its 2 (node) or 1 (rotation) forces
   VectorXd reactions;              // nr: Model::reactions
   // Joint friction (Model::frictions; src/dynamics/friction.hpp), written by evaluation: the
@@ -161,7 +168,8 @@ struct ForwardData {
   // The projection with the quasi-steady springs' lengths held as they are.
   void project_held(double t, VectorXd& q0, VectorXd& q1, double tol_pos, double tol_vel);
   // Reactions of a recorded state with accelerations `a` (least-squares multipliers of
-  // A^T lambda = B u - (M a - f); regularized where A loses rank).
+  // A^T lambda = B u - (M a - f), to the digits of the state; minimum-norm where A loses rank:
+  // src/forward/least_squares.hpp).
   void compute_reactions(double t, const VectorXd& q0, const VectorXd& q1);
   // (sigma_min / sigma_max)^2 of the dimensionless A at q0 (pivot ratio of its Gram matrix).
   double pivot_indicator(double t, const VectorXd& q0);

@@ -5,6 +5,7 @@
 #include "mo2d/csv.hpp"
 #include "mo2d/dynamics.hpp"
 #include "mo2d/error.hpp"
+#include "mo2d/extremes.hpp"
 #include "mo2d/forward.hpp"
 #include "mo2d/forward_data.hpp"
 #include "mo2d/inverse.hpp"

@@ -121,7 +121,9 @@ void bind_model(py::module_& m) {
 }  // namespace
 
 Result make_result(std::shared_ptr<Model> model, Trajectory trajectory) {
-  Result r{std::move(model), std::move(trajectory), {}};
+  Result r;
+  r.model = std::move(model);
+  r.trajectory = std::move(trajectory);
   r.warnings = r.model->sketch.warnings;
   const auto& w = r.trajectory.stats.warnings;
   r.warnings.insert(r.warnings.end(), w.begin(), w.end());
@@ -166,6 +168,31 @@ void bind_results(py::module_& m) {
                              [](const Result& r) { return stats(r.trajectory.stats, r.warnings); })
       .def_property_readonly("cpu_seconds",
                              [](const Result& r) { return r.trajectory.stats.cpu_seconds; })
+      .def_property_readonly(
+          "extremes",
+          [](Result& r) {
+            if (!r.locate)
+              throw Error(
+                  "extremes: located for the runs of mo2d.inverse / forward (scenes) and "
+                  "inverse_dynamics / forward_dynamics only");
+            if (!r.extremes) r.extremes = r.locate(r.trajectory);
+            py::dict d;
+            for (const Extreme& e : *r.extremes) {
+              py::dict x;
+              x["max"] = e.max;
+              x["t_max"] = e.t_max;
+              x["min"] = e.min;
+              x["t_min"] = e.t_min;
+              x["located"] = e.located_max && e.located_min;
+              x["sampled_max"] = e.sampled_max;
+              x["sampled_min"] = e.sampled_min;
+              d[py::str(e.label)] = x;
+            }
+            return d;
+          },
+          "{label: {max, t_max, min, t_min, located, sampled_max, sampled_min}} of every effort, "
+          "reaction and output column, located between the samples (computed on first read; "
+          "mo2d/extremes.hpp)")
       .def_readonly("warnings", &Result::warnings)
       .def(
           "csv", [](const Result& r) { return trajectory_csv(r.trajectory); },

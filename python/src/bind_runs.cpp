@@ -88,7 +88,12 @@ Result inverse(const std::shared_ptr<Model>& model, const Motions& motion, doubl
     o.complement = ComplementMethod::recursive;
   else if (complement != "prescribed")
     throw Error("complement: 'prescribed' or 'recursive', not '" + complement + "'");
-  return make_result(model, inverse_dynamics(*model, to_motions(motion, params), o));
+  const std::vector<Prescribed> motions = to_motions(motion, params);
+  Result out = make_result(model, inverse_dynamics(*model, motions, o));
+  out.locate = [model, motions, o](const Trajectory& t) {
+    return locate_extremes(*model, motions, o, t);
+  };
+  return out;
 }
 
 // stop_when(t, q0, q1) -> float of Python (None: none); the run stops where it changes sign.
@@ -117,7 +122,9 @@ Result forward(const std::shared_ptr<Model>& model, const State& initial, double
   o.max_steps = to_count(max_steps, "max_steps");
   o.efforts = to_efforts(*model, efforts, params);
   o.stop_when = to_stop(stop_when);
-  return make_result(model, forward_dynamics(*model, initial, o));
+  Result out = make_result(model, forward_dynamics(*model, initial, o));
+  out.locate = [model, o](const Trajectory& t) { return locate_extremes(*model, o, t); };
+  return out;
 }
 
 void bind_state(py::module_& m) {

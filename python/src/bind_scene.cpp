@@ -76,7 +76,11 @@ Result run_inverse(const Scene& scene) {
   check_scene_options(scene, *model, run);
   Trajectory r = inverse_dynamics(*model, scene.motion, run);
   add_output_columns(*model, r, scene.outputs);
-  return make_result(std::move(model), std::move(r));
+  Result out = make_result(model, std::move(r));
+  out.locate = [model, motion = scene.motion, run, outputs = scene.outputs](const Trajectory& t) {
+    return locate_extremes(*model, motion, run, t, outputs);
+  };
+  return out;
 }
 
 Result run_forward(const Scene& scene) {
@@ -85,7 +89,11 @@ Result run_forward(const Scene& scene) {
   check_scene_options(scene, *model, run);
   Trajectory r = forward_dynamics(*model, initial_state(scene, *model), run);
   add_output_columns(*model, r, scene.outputs);
-  return make_result(std::move(model), std::move(r));
+  Result out = make_result(model, std::move(r));
+  out.locate = [model, run, outputs = scene.outputs](const Trajectory& t) {
+    return locate_extremes(*model, run, t, outputs);
+  };
+  return out;
 }
 
 // The inverse cross-check of `mo2d crosscheck SCENE` (apps/cmd_crosscheck.cpp), without files.

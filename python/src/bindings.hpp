@@ -8,11 +8,14 @@
 // code inside) release it.
 #include <pybind11/pybind11.h>
 
+#include <functional>
 #include <memory>
+#include <optional>
 #include <string>
 #include <utility>
 #include <vector>
 
+#include "mo2d/extremes.hpp"
 #include "mo2d/model.hpp"
 #include "mo2d/scene.hpp"
 #include "mo2d/trajectory.hpp"
@@ -36,6 +39,10 @@ struct Result {
   std::shared_ptr<Model> model{};
   Trajectory trajectory{};
   std::vector<std::string> warnings{};  // build warnings (sketch), then the run's
+  // Scene runs: locate_extremes of the run (mo2d/extremes.hpp), called on the first read of
+  // Result.extremes (a sweep that does not read them does not pay for them); its result.
+  std::function<std::vector<Extreme>(const Trajectory&)> locate{};
+  std::optional<std::vector<Extreme>> extremes{};
 };
 
 // mo2d.Error (a subclass of Exception) and the translation of mo2d::Error, SceneError and

@@ -46,8 +46,9 @@ namespace {
 // the compiled effort laws and the column scaling.
 void init_vectors(ForwardData& d) {
   d.B = input_matrix(d.m);
-  d.b = d.c = d.r1 = d.lambda = d.lam_ls = VectorXd::Zero(d.m.m1);
+  d.b = d.c = d.r1 = d.lambda = d.lam_ls = d.ls_d = VectorXd::Zero(d.m.m1);
   d.f = d.Bu = d.rhs = d.a = d.ap = d.tmp0 = d.tmp1 = d.dq1 = d.w = VectorXd::Zero(d.m.n1);
+  d.ls_x = d.ls_r = VectorXd::Zero(d.m.n1);
   d.u = VectorXd::Zero(d.m.n_inputs());
   d.effort_laws.resize(d.m.n_inputs());
   for (int k = 0; k < d.m.n_inputs() && k < static_cast<int>(d.o.efforts.size()); ++k)
@@ -81,6 +82,8 @@ ForwardData::ForwardData(const Model& model, const ForwardOptions& opt) : m(mode
   H = MatrixXd::Zero(m.n1, m.n1);
   An = MatrixXd::Zero(m.m1, m.n1);
   G1 = MatrixXd::Zero(m.m1, m.m1);
+  G_ls = MatrixXd::Zero(m.m1, m.m1);
+  llt_ls = Eigen::LLT<MatrixXd>(m.m1);
   lu_G1_ = std::make_unique<detail::SmallLU>(m.m1);
   {
     // on the dimensionless D M D (D = col_scale): the test does not depend on units or size

@@ -1,5 +1,6 @@
 // Forward dynamics: the reactions of a state (recorded, and those the joint friction reads) and
 // the evaluation with joint friction (stages of ForwardData, mo2d/forward_data.hpp).
+#include <algorithm>
 #include <cmath>
 #include <string>
 
@@ -7,6 +8,7 @@
 #include "dynamics/friction.hpp"
 #include "dynamics/reactions.hpp"
 #include "forward/forward_run.hpp"
+#include "forward/least_squares.hpp"
 #include "forward/sparse_engine.hpp"
 #include "mo2d/dynamics.hpp"
 #include "mo2d/error.hpp"
@@ -16,7 +18,6 @@
 namespace mo2d {
 
 using detail::fmt;
-using detail::regularized_normal_solve;
 
 void ForwardData::compute_reactions(double t, const VectorXd& q0, const VectorXd& q1) {
   inputs(t, q0, q1);
@@ -24,7 +25,8 @@ void ForwardData::compute_reactions(double t, const VectorXd& q0, const VectorXd
 }
 
 // The reactions at the accelerations a with the efforts u and the friction values: least-squares
-// multipliers of A^T lambda = B u + (friction) - (M a - f), split at the eliminated joints.
+// multipliers of A^T lambda = B u + (friction) - (M a - f) (minimum-norm, to the digits of the
+// state: least_squares.hpp), split at the eliminated joints.
 void ForwardData::reactions_at(double t, const VectorXd& q0, const VectorXd& q1) {
   if (sparse_) {
     sparse_->fill_velocity_slots(q0, t, b, entries_);
@@ -40,11 +42,18 @@ void ForwardData::reactions_at(double t, const VectorXd& q0, const VectorXd& q1)
   w.setZero();
   if (!m.frictions.empty()) detail::add_friction_forces(m, friction, -1.0, true, la, w);
   scatter_local(m, la, w);
-  if (m.m1 > 0 && sparse_) {
-    tmp0 = Bu - w;
-    sparse_->least_squares(tmp0, 1e-14, lam_ls);
-  } else if (m.m1 > 0) {
-    lam_ls = regularized_normal_solve(A, Bu - w, 1e-14);
+  if (m.m1 > 0) {
+    ls_x = Bu;
+    ls_x -= w;
+    if (sparse_) {
+      sparse_->least_squares(ls_x, 1e-14, lam_ls);
+    } else {
+      G_ls.noalias() = A * A.transpose();
+      G_ls.diagonal().array() += 1e-14 * std::max(1.0, G_ls.diagonal().maxCoeff());
+      llt_ls.compute(G_ls);
+      detail::refined_least_squares(
+          A, ls_x, [this](VectorXd& v) { llt_ls.solveInPlace(v); }, lam_ls, ls_r, ls_d);
+    }
   }
   detail::joint_reactions(m, entries_, lam_ls, u, la, edge_force, edge_offset, reactions);
 }

@@ -6,6 +6,7 @@
 
 #include "constraints/constraints.hpp"
 #include "dynamics/points.hpp"
+#include "forward/least_squares.hpp"
 #include "mo2d/dynamics.hpp"
 
 namespace mo2d::detail {
@@ -359,9 +360,8 @@ void SparseEngine::least_squares(const VectorXd& x, double eps, VectorXd& lambda
   for (int i = 0; i < m_.m1; ++i) R_.C.valuePtr()[R_.diag_at[i]] += eps * dmax;
   if (!analysed_R_) llt_R_.analyse(R_.C), analysed_R_ = true;
   llt_R_.factorize_fixed(R_.C);
-  tmp_m_.noalias() = A * x;
-  lambda = tmp_m_;
-  llt_R_.solve_in_place(lambda);
+  refined_least_squares(
+      A, x, [this](VectorXd& v) { llt_R_.solve_in_place(v); }, lambda, tmp_n_, tmp_m_);
 }
 
 void SparseEngine::project_positions(double t, VectorXd& q0, double alpha,

@@ -93,7 +93,8 @@ class SparseEngine {
                  const Eigen::VectorXd& row_scale, Eigen::VectorXd& a, Eigen::VectorXd& lambda);
   // min(D) / max(D) of the LDL^T of N A D^2 A^T N (1 without rows): ~ (sigma_min / sigma_max)^2
   double conditioning(const Eigen::VectorXd& col_scale, const Eigen::VectorXd& row_scale);
-  // lambda = (A A^T + eps max(1, max diag) I)^-1 A x: regularized least-squares multipliers
+  // the minimum-norm least-squares lambda of A^T lambda = x: (A A^T + eps max(1, max diag) I)^-1
+  // A x refined on the residual (least_squares.hpp)
   void least_squares(const Eigen::VectorXd& x, double eps, Eigen::VectorXd& lambda);
   // Damped Newton on psi = 0 in the metric M0 (solve_positions.hpp's NewtonStep::damped, six
   // steps, the last not tested): q0 -= (M0 + alpha Psi^T P^2 Psi)^-1 alpha Psi^T P^2 psi.

@@ -336,17 +336,22 @@ TEST(NoAllocation, Rrr3SceneSample) {
 // One evaluation of forward dynamics on its public workspace (forward_accelerations, the
 // integrators' right-hand side) allocates nothing once the workspace is built and a first
 // evaluation has sized the factorizations: the double four-bar (M positive definite: the Schur
-// solve) and the pendulum (M singular: the KKT solve).
+// solve), the pendulum (M singular: the KKT solve) and the slider-crank with joint friction (the
+// reactions' least squares in every evaluation); and the reactions of a recorded sample
+// (compute_reactions: the refined least squares, src/forward/least_squares.hpp).
 TEST(NoAllocation, ForwardAccelerations) {
   auto expect_none = [](const mo2d::Model& model, const mo2d::State& s, const char* name) {
     mo2d::ForwardData data(model);
     const Eigen::VectorXd u = Eigen::VectorXd::Constant(model.n_inputs(), 0.5);
     mo2d::forward_accelerations(model, data, 0.0, s.q0, s.q1, u);
+    data.compute_reactions(0.0, s.q0, s.q1);  // sizes the list of A's entries by body slot
     Counts c;
     {
       CountAllocations scope;
-      for (int k = 0; k < 100; ++k)
+      for (int k = 0; k < 100; ++k) {
         mo2d::forward_accelerations(model, data, 1e-3 * k, s.q0, s.q1, u);
+        data.compute_reactions(1e-3 * k, s.q0, s.q1);  // a recorded sample's reactions
+      }
       c = scope.stop();
     }
     EXPECT_EQ(c.news, 0) << "operator new calls in 100 evaluations, " << name;
@@ -363,6 +368,11 @@ TEST(NoAllocation, ForwardAccelerations) {
   expect_none(pendulum,
               mo2d::consistent_state(pendulum, {.positions = {}, .velocities = {{"link.w", 0.5}}}),
               "pendulum");
+  // joint friction: every evaluation iterates the friction with the reactions (least squares)
+  const mo2d::Scene fr =
+      mo2d::load_scene(std::string(MO2D_MECHANISMS_DIR) + "/slider_crank_friction.yaml");
+  const mo2d::Model friction = mo2d::build_scene_model(fr);
+  expect_none(friction, mo2d::initial_state(fr, friction), "slider-crank with friction");
 }
 
 // The same on the sparse path (sparse_engine.hpp): the Gram matrix's LDL^T of the conditioning

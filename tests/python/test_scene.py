@@ -41,6 +41,29 @@ def test_pendulum_torque_is_the_closed_form(mechanisms):
                                rtol=1e-9, atol=1e-9)
 
 
+def test_extremes_are_located_between_the_samples(mechanisms):
+    # the pendulum's torque tau = m L^2 theta'' + m g L cos(theta): its peaks where tau' = 0
+    r = mo2d.inverse(mo2d.load_scene(mechanisms / "pendulum.yaml", set={"m": 2.0, "L": 0.5}))
+    m, L, g = 2.0, 0.5, 9.81
+    th = lambda t: 0.5 * np.sin(3 * t) + t**2
+    d1 = lambda t: 1.5 * np.cos(3 * t) + 2 * t
+    d2 = lambda t: -4.5 * np.sin(3 * t) + 2
+    tau = lambda t: m * L**2 * d2(t) + m * g * L * np.cos(th(t))
+    dtau = lambda t: m * L**2 * (-13.5 * np.cos(3 * t)) - m * g * L * np.sin(th(t)) * d1(t)
+    e = r.extremes["pivot.torque"]
+    assert e["located"] and set(r.extremes) == set(r.effort_labels + r.reaction_labels)
+    for key in ("max", "min"):
+        t = e["t_" + key]
+        if t in (r.t[0], r.t[-1]):
+            continue
+        h = 1e-6  # Newton on tau' with a difference quotient for tau''
+        tr = t
+        for _ in range(8):
+            tr -= dtau(tr) * 2 * h / (dtau(tr + h) - dtau(tr - h))
+        assert abs(t - tr) < 1e-10 and abs(e[key] - tau(tr)) < 1e-10
+        assert abs(e["sampled_" + key] - e[key]) > 1e-7
+
+
 def test_overrides_are_expressions_or_numbers(mechanisms):
     a = mo2d.load_scene(mechanisms / "pendulum.yaml", set={"m": "2*L", "L": 0.75})
     assert a.parameters["m"] == 1.5 and a.parameters["L"] == 0.75
