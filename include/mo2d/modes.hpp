@@ -160,8 +160,8 @@ struct Mode {
 // whose eigenproblem needs more than max_memory bytes, or more than max_seconds at a fast
 // machine's rate, is refused before the work starts (Error "max_memory", BudgetExhausted).
 struct ModesOptions {
-  double max_seconds = kDefaultMaxSeconds;
-  double max_memory = kDefaultMaxMemory;
+  double max_seconds = kDefaultMaxSeconds;  // wall-clock budget (s)
+  double max_memory = kDefaultMaxMemory;    // bytes the dense eigenproblem may allocate
 };
 // The modes of ss, oscillatory ones by ascending omega_n first, then the real ones.
 std::vector<Mode> vibration_modes(const StateSpace& ss, const ModesOptions& o = {});

@@ -23,10 +23,11 @@ class BudgetExhausted : public Error {
 inline constexpr double kInterruptPoll = 0.05;
 using InterruptCheck = bool (*)();
 void set_interrupt_check(InterruptCheck check);  // nullptr: none (the default)
-InterruptCheck interrupt_check();
+InterruptCheck interrupt_check();                // the check installed (nullptr: none)
 // Thrown by a run that its interrupt check stopped. Not an Error, so that nothing in mo2d that
 // recovers from an Error (a retry, a fallback method) swallows it.
 struct Interrupted : std::exception {
+  // "mo2d: the run was interrupted"
   const char* what() const noexcept override { return "mo2d: the run was interrupted"; }
 };
 // Calls the interrupt check (if any) and throws Interrupted when it says so.
