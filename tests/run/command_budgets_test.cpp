@@ -214,10 +214,17 @@ TEST(CommandBudgets, EveryRunStopsAtAnInterrupt) {
   const State f0 =
       consistent_state(fourbars, {.positions = {}, .velocities = {{"crank0.w", -1.0}}});
   const CbInterrupting interrupting;
-  auto stops_fast = [](const char* what, auto run) {
+  // 0.5 s (the bound) from the start of the call, its setup included; 10 times that under
+  // the sanitizers, whose setup (models, the cross-check's world, 1e5 states) is ~10 times slower
+#ifdef MO2D_SANITIZE
+  constexpr double kWithin = 5.0;
+#else
+  constexpr double kWithin = 0.5;
+#endif
+  auto stops_fast = [&](const char* what, auto run) {
     const auto start = std::chrono::steady_clock::now();
     EXPECT_THROW(run(), Interrupted) << what;
-    EXPECT_LT(cb_seconds_since(start), 0.5) << what;
+    EXPECT_LT(cb_seconds_since(start), kWithin) << what;
   };
   stops_fast("forward rk4", [&] {
     ForwardOptions o;
