@@ -83,7 +83,9 @@ ForwardData::ForwardData(const Model& model, const ForwardOptions& opt) : m(mode
   An = MatrixXd::Zero(m.m1, m.n1);
   G1 = MatrixXd::Zero(m.m1, m.m1);
   G_ls = MatrixXd::Zero(m.m1, m.m1);
-  llt_ls = Eigen::LLT<MatrixXd>(m.m1);
+  // its storage allocated here, not in the hot path: a factorization of the identity (not a
+  // move-assignment of LLT(m1), which copies its uninitialized info: UBSan's invalid enum load)
+  llt_ls.compute(MatrixXd::Identity(m.m1, m.m1));
   lu_G1_ = std::make_unique<detail::SmallLU>(m.m1);
   {
     // on the dimensionless D M D (D = col_scale): the test does not depend on units or size
