@@ -423,11 +423,8 @@ Trajectory detail::forward_run(const Model& m, const State& initial, const Forwa
 }
 
 Trajectory forward_dynamics(const Model& m, const State& initial, const ForwardOptions& options) {
-  ForwardOptions ran;
-  Trajectory r = detail::forward_run(m, initial, options, &ran);
-  detail::check_energy_balance(m, r);  // of the whole run (a switching run's legs: forward_run)
-  detail::estimate_global_error(m, initial, options, ran, r);
-  return detail::meet_accuracy(m, initial, options, std::move(r));
+  return detail::meet_accuracy(m, initial, options,
+                               detail::checked_run(m, initial, options, options));
 }
 
 std::vector<std::function<double(double)>> efforts_from_inverse(const Model& m,

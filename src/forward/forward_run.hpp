@@ -62,6 +62,10 @@ Trajectory forward_run(const Model& m, const State& initial, const ForwardOption
 // the options of the run, `ran` the options that ran (forward_run's `chosen`).
 void estimate_global_error(const Model& m, const State& initial, const ForwardOptions& asked,
                            const ForwardOptions& ran, Trajectory& r);
+// forward_run of o with the checks of a whole run: its energy balance and, against the accuracy
+// `asked` for, its error estimate (forward_dynamics, and each retry of meet_accuracy).
+Trajectory checked_run(const Model& m, const State& initial, const ForwardOptions& asked,
+                       const ForwardOptions& o);
 // r, or a rerun at a tighter accuracy where r's estimated error exceeds the accuracy asked for
 // (meet_accuracy.cpp: at most three retries, within the wall-time budget).
 Trajectory meet_accuracy(const Model& m, const State& initial, const ForwardOptions& asked,

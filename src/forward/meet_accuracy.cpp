@@ -28,6 +28,15 @@ double seconds_since(std::chrono::steady_clock::time_point start) {
 
 }  // namespace
 
+Trajectory checked_run(const Model& m, const State& initial, const ForwardOptions& asked,
+                       const ForwardOptions& o) {
+  ForwardOptions ran;
+  Trajectory r = forward_run(m, initial, o, &ran);
+  check_energy_balance(m, r);  // of the whole run (a switching run's legs: forward_run)
+  estimate_global_error(m, initial, asked, ran, r);
+  return r;
+}
+
 Trajectory meet_accuracy(const Model& m, const State& initial, const ForwardOptions& asked,
                          Trajectory r) {
   const double A = asked.accuracy;
@@ -43,15 +52,12 @@ Trajectory meet_accuracy(const Model& m, const State& initial, const ForwardOpti
     ForwardOptions o = asked;
     o.accuracy = a;
     o.max_seconds = left;
-    ForwardOptions ran;
     Trajectory t;
     try {
-      t = forward_run(m, initial, o, &ran);
+      t = checked_run(m, initial, asked, o);  // its estimate warns against A, not a
     } catch (const Error&) {
       break;  // the tighter run could not be made: the last one stands, with its warning
     }
-    check_energy_balance(m, t);
-    estimate_global_error(m, initial, asked, ran, t);  // warns against A, not a
     spent += r.stats.cpu_seconds + r.stats.estimate_cpu_seconds;
     const double e = t.stats.estimated_error;
     if (!(e > 0) || !std::isfinite(e)) {  // not estimated, or exact: nothing to extrapolate
