@@ -20,7 +20,9 @@ run comes out as itself, with a note (and mo2d_element, mo2d_time) naming the lo
 
 Step by step: mo2d.ForwardWorkspace (accelerations, multipliers, projection, reactions at a
 state), mo2d.InverseWorkspace (one sample at a time); mo2d.energy_balance(result).
-Parameter sweeps on Dask: mo2d.sweep (mo2d/_sweep.py; command line: python3 -m mo2d sweep). Every error is a mo2d.Error.
+Parameter sweeps on Dask: mo2d.sweep (mo2d/_sweep.py; command line: python3 -m mo2d sweep). Every error is a mo2d.Error;
+an unknown column of a result, r["pivot.torq"], is a mo2d.ColumnError (also a KeyError) naming the
+closest one. mo2d.__version__ is the project's version (`mo2d --version`).
 """
 
 import numbers
@@ -30,6 +32,7 @@ from . import _runs
 from ._runs import forward, inverse  # noqa: F401  (run settings as keywords)
 from ._mo2d import (  # noqa: F401  (the public API)
     Equilibrium,
+    ColumnError,
     Error,
     Law,
     Mode,
@@ -54,6 +57,7 @@ from ._mo2d import (  # noqa: F401  (the public API)
     write_plot,
     write_series_plot,
 )
+from ._mo2d import __version__  # noqa: F401  (project(mo2d VERSION ...) of CMakeLists.txt)
 from ._mo2d import (  # noqa: F401  (step by step, energies, tables, controllers, transmissions)
     ForwardWorkspace,
     InverseWorkspace,
@@ -72,7 +76,7 @@ from ._mo2d import (  # noqa: F401  (step by step, energies, tables, controllers
 )
 
 __all__ = [
-    "Error", "Law", "Model", "Result", "Scene", "State", "System", "build_model",
+    "ColumnError", "Error", "Law", "Model", "Result", "Scene", "State", "System", "build_model",
     "consistent_state", "crosscheck", "crosscheck_forward", "crosscheck_inverse", "forward",
     "forward_dynamics", "inverse", "inverse_dynamics", "load_scene", "parse_scene", "sweep",
     "Equilibrium", "Mode", "StateSpace", "linearize", "modes", "static_equilibrium",
@@ -110,15 +114,34 @@ def _overrides(set):
 
 
 def load_scene(path, set=None, run=None):
-    """Read and check a scene file (docs/scene-format.md); set={"name": value} overrides its
-    parameters like `mo2d inverse --set name=value`, run={"duration": 2} its run settings like
-    `--duration 2`. Raises mo2d.Error (file:line:column, or "--duration: ...")."""
+    """Read and check a scene file (docs/scene-format.md); returns a mo2d.Scene.
+
+    path: the file (str or path-like). set={"name": value} overrides its parameters like
+    `mo2d inverse --set name=value`: a number, or a string, an expression of the other
+    parameters. run={"duration": 2} overrides its run settings like `--duration 2` (any key of
+    `mo2d inverse` or `mo2d forward`: t0, duration, samples, integrator, rtol, ...). Raises
+    mo2d.Error naming file:line:column (or the flag: "--duration: ..."), TypeError for a
+    value of set= that is neither a number nor a string.
+
+    Example::
+
+        scene = mo2d.load_scene("mechanisms/fourbar.yaml", set={"a": 0.12, "b": "3.5 * a"})
+        r = mo2d.inverse(scene)
+    """
     return _mo2d._load_scene(str(path), _overrides(set), _run_overrides(run))
 
 
 def parse_scene(text, file_name="<scene>", set=None, run=None):
-    """A scene from YAML text, a str or bytes (UTF-8, or UTF-16/32 with a byte order mark);
-    errors name file_name:line:column."""
+    """A mo2d.Scene from YAML text instead of a file (as load_scene reads one).
+
+    text: a str, or bytes (UTF-8, or UTF-16/32 with a byte order mark); file_name: the name
+    errors give (file_name:line:column); set=, run=: as in load_scene. Raises mo2d.Error, or
+    TypeError for text that is neither str nor bytes.
+
+    Example::
+
+        scene = mo2d.parse_scene(open("mechanisms/pendulum.yaml").read(), "pendulum.yaml")
+    """
     if isinstance(text, (bytes, bytearray, memoryview)):
         text = bytes(text)
     elif not isinstance(text, str):
@@ -128,7 +151,8 @@ def parse_scene(text, file_name="<scene>", set=None, run=None):
 
 
 def _to_pandas(self):
-    """The result as a pandas DataFrame, one column per label of r.columns (the CSV's)."""
+    """The result as a pandas DataFrame, one column per label of r.columns (the CSV's), one
+    row per sample; needs pandas (python3-pandas)."""
     import pandas
 
     return pandas.DataFrame({label: self[label] for label in self.columns})
@@ -138,8 +162,20 @@ Result.to_pandas = _to_pandas
 
 
 def sweep(scene, grid_or_samples, solve=None, summary=None, client=None, **kwargs):
-    """Run a scene file for many parameter sets on Dask, one model per task; see
-    mo2d._sweep.sweep for the arguments and the table it returns."""
+    """Run a scene file for many parameter sets on Dask, one model per task (docs/sweeps.md).
+
+    scene: the scene file's path; grid_or_samples: {"m": [1, 2], "L": [0.5, 1]} (every
+    combination) or a list of dicts (one run each); solve: "inverse" or "forward" (default:
+    the scene's); client: a dask.distributed Client (default: a LocalCluster for the call).
+    Returns a pandas DataFrame (a list of dicts without pandas), one row per run: its
+    parameters, ok, error (the message of a failed run), the peaks of the efforts, the largest
+    residuals, the CPU time; see mo2d._sweep.sweep for the other arguments (jobs, batch,
+    on_row, max_runs, ...).
+
+    Example::
+
+        rows = mo2d.sweep("mechanisms/pendulum.yaml", {"m": [1, 2], "L": [0.5, 1]})
+    """
     from ._sweep import sweep as _sweep  # imports dask only when a sweep runs
 
     return _sweep(scene, grid_or_samples, solve=solve, summary=summary, client=client, **kwargs)

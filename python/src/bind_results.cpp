@@ -10,6 +10,7 @@
 #include "bindings.hpp"
 #include "mo2d/csv.hpp"
 #include "mo2d/error.hpp"
+#include "model/suggest.hpp"
 
 namespace mo2d::py_bind {
 
@@ -62,15 +63,17 @@ std::vector<std::string> columns(const Trajectory& r) {
   return out;
 }
 
-// Column `label`; an unknown label is an Error naming it (with Trajectory's own suggestion for
-// coordinates, efforts, reactions and outputs).
+// Column `label`; an unknown label is a ColumnError naming it and the closest column (the
+// suggestion of the scene loader, model/suggest.hpp).
 VectorXd column(const Trajectory& r, const std::string& label) {
   if (label == "t" || label == "time") return r.time;
   const MatrixXd e = energies(r);
   for (const auto& b : blocks(r, e))
     for (std::size_t k = 0; k < b.labels.size(); ++k)
       if (b.labels[k] == label) return b.values->col(static_cast<Eigen::Index>(k));
-  throw Error("result: no column '" + label + "' (r.columns lists them)", label);
+  throw ColumnError("result: no column '" + label + "'" + did_you_mean(label, columns(r)) +
+                        " (r.columns lists them)",
+                    label);
 }
 
 py::dict stats(const RunStats& s, const std::vector<std::string>& warnings) {
@@ -102,16 +105,43 @@ py::dict stats(const RunStats& s, const std::vector<std::string>& warnings) {
 
 void bind_model(py::module_& m) {
   py::class_<Model, std::shared_ptr<Model>>(
-      m, "Model", "A mechanism ready to run (build_model, Scene.build_model)")
-      .def_readonly("name", &Model::name)
-      .def_readonly("dof", &Model::dof, "degrees of freedom at the initial configuration")
-      .def_readonly("coordinate_labels", &Model::coordinate_labels)
-      .def_readonly("rate_labels", &Model::rate_labels)
-      .def_property_readonly("input_labels", &Model::input_labels)
-      .def_property_readonly("reaction_labels", &Model::reaction_labels)
-      .def_readonly("q0", &Model::q0, "initial (assembled) coordinates")
-      .def_property_readonly("warnings", [](const Model& x) { return x.sketch.warnings; })
-      .def("describe", &describe, "the text `mo2d info` prints")
+      m, "Model",
+      "A mechanism ready to run: its coordinates, quasi-velocities, inputs and equations.\n\n"
+      "Made by mo2d.build_model(system) or Scene.build_model(); the runs (inverse_dynamics, "
+      "forward_dynamics, linearize, ...) take it. A Result keeps the Model it was computed "
+      "with.\n\n"
+      "Example::\n\n"
+      "    model = mo2d.build_model(system)\n"
+      "    model.dof, model.coordinate_labels, model.input_labels\n"
+      "    print(model.describe())")
+      .def_readonly("name", &Model::name, "The name of the System (or scene) it was built from.")
+      .def_readonly("dof", &Model::dof,
+                    "Degrees of freedom at the initial configuration (an int): the number of "
+                    "motions to prescribe in inverse dynamics.")
+      .def_readonly("coordinate_labels", &Model::coordinate_labels,
+                    "Labels of the coordinates q0 (list of str): node positions "
+                    "'crank.A.x' (m), angles 'crank.angle' (rad), slides 'slide.q' (m), extra "
+                    "coordinates; the order of q0 and of Result.q0's columns.")
+      .def_readonly("rate_labels", &Model::rate_labels,
+                    "Labels of the quasi-velocities q1 (list of str): 'crank.w' (rad/s), "
+                    "'crank.A.vx' (m/s), 'slide.v' (m/s), ...; the order of q1 and Result.q1.")
+      .def_property_readonly(
+          "input_labels", &Model::input_labels,
+          "Labels of the inputs (actuated joints), e.g. 'pivot.torque' (N m) or 'slide.force' "
+          "(N): the columns of Result.efforts and the keys of efforts=[(label, law)].")
+      .def_property_readonly(
+          "reaction_labels", &Model::reaction_labels,
+          "Labels of the reaction components, e.g. 'pivot.Fx', 'pivot.Fy' (N), 'slide.T' "
+          "(N m): the columns of Result.reactions.")
+      .def_readonly("q0", &Model::q0,
+                    "The initial (assembled) coordinates, a NumPy array in the order of "
+                    "coordinate_labels (m and rad).")
+      .def_property_readonly(
+          "warnings", [](const Model& x) { return x.sketch.warnings; },
+          "Warnings of the build (list of str), e.g. sketched nodes moved far by the assembly.")
+      .def("describe", &describe,
+           "The description `mo2d info` prints (str): bodies, joints, coordinates, inputs, "
+           "degrees of freedom.")
       .def("__repr__", [](const Model& x) {
         return "<mo2d.Model '" + x.name + "': " + std::to_string(x.dof) + " DOF, " +
                std::to_string(x.coordinate_labels.size()) + " coordinates>";
@@ -132,42 +162,90 @@ Result make_result(std::shared_ptr<Model> model, Trajectory trajectory) {
 
 void bind_results(py::module_& m) {
   bind_model(m);
-  py::class_<Result>(m, "Result",
-                     "A run: NumPy arrays of its columns (r.t, r['crank.torque']), r.columns (the "
-                     "CSV header), r.efforts / r.reactions (samples x labels), r.stats")
-      .def_property_readonly("kind", [](const Result& r) { return to_string(r.trajectory.kind); })
-      .def_property_readonly("model", [](const Result& r) { return r.model; })
-      .def_property_readonly("t", [](const Result& r) { return r.trajectory.time; })
-      .def_property_readonly("columns", [](const Result& r) { return columns(r.trajectory); })
+  py::class_<Result>(
+      m, "Result",
+      "A run (inverse or forward dynamics): its samples as NumPy arrays, one row per sample.\n\n"
+      "r.t is the time (s); r['crank_pivot.torque'] any column of the CSV `mo2d inverse` / "
+      "`forward` writes, by its label (r.columns lists them; an unknown label raises "
+      "mo2d.ColumnError, a KeyError, with the closest label); r.efforts / r.reactions are "
+      "samples x labels matrices; r.stats the run's statistics.\n\n"
+      "Example::\n\n"
+      "    r = mo2d.inverse(mo2d.load_scene('mechanisms/fourbar.yaml'))\n"
+      "    r.t, r['crank_pivot.torque'], r.stats['cpu_seconds']\n"
+      "    df = r.to_pandas()")
+      .def_property_readonly(
+          "kind", [](const Result& r) { return to_string(r.trajectory.kind); },
+          "'inverse' or 'forward': the run that made it.")
+      .def_property_readonly(
+          "model", [](const Result& r) { return r.model; },
+          "The mo2d.Model the run was computed with (kept alive by the result).")
+      .def_property_readonly(
+          "t", [](const Result& r) { return r.trajectory.time; },
+          "The sample times (s), a NumPy array (a copy on each read); also r['t'].")
+      .def_property_readonly(
+          "columns", [](const Result& r) { return columns(r.trajectory); },
+          "The labels of the columns (list of str), the CSV header: 't', the coordinates, the "
+          "quasi-velocities, their derivatives ('.dot'), the efforts, the reactions, the "
+          "energies (forward runs), the residuals and the outputs.")
       .def(
           "__getitem__",
           [](const Result& r, const std::string& label) { return column(r.trajectory, label); },
-          "one column by label (any of r.columns)")
+          py::arg("label"),
+          "One column by its label (any of r.columns, or 'time'), a NumPy array of one value per "
+          "sample. Raises mo2d.ColumnError (a KeyError and a mo2d.Error) for a label that is "
+          "not a column, naming the closest one.")
       .def("__contains__",
            [](const Result& r, const std::string& label) {
              const auto c = columns(r.trajectory);
              return std::find(c.begin(), c.end(), label) != c.end();
            })
       .def("__len__", [](const Result& r) { return r.trajectory.time.size(); })
-      .def_property_readonly("q0", [](const Result& r) { return r.trajectory.q0; })
-      .def_property_readonly("q1", [](const Result& r) { return r.trajectory.q1; })
-      .def_property_readonly("a1", [](const Result& r) { return r.trajectory.a1; })
-      .def_property_readonly("efforts", [](const Result& r) { return r.trajectory.efforts; })
-      .def_property_readonly("effort_labels",
-                             [](const Result& r) { return r.trajectory.input_labels; })
-      .def_property_readonly("reactions", [](const Result& r) { return r.trajectory.reactions; })
-      .def_property_readonly("reaction_labels",
-                             [](const Result& r) { return r.trajectory.reaction_labels; })
-      .def_property_readonly("residuals", [](const Result& r) { return r.trajectory.residuals; })
-      .def_property_readonly("residual_labels",
-                             [](const Result& r) { return r.trajectory.residual_labels; })
-      .def_property_readonly("outputs", [](const Result& r) { return r.trajectory.outputs; })
-      .def_property_readonly("output_labels",
-                             [](const Result& r) { return r.trajectory.output_labels; })
-      .def_property_readonly("stats",
-                             [](const Result& r) { return stats(r.trajectory.stats, r.warnings); })
-      .def_property_readonly("cpu_seconds",
-                             [](const Result& r) { return r.trajectory.stats.cpu_seconds; })
+      .def_property_readonly(
+          "q0", [](const Result& r) { return r.trajectory.q0; },
+          "The coordinates at every sample: samples x Model.coordinate_labels (m, rad).")
+      .def_property_readonly(
+          "q1", [](const Result& r) { return r.trajectory.q1; },
+          "The quasi-velocities at every sample: samples x Model.rate_labels (m/s, rad/s).")
+      .def_property_readonly(
+          "a1", [](const Result& r) { return r.trajectory.a1; },
+          "The accelerations d/dt q1 at every sample: samples x Model.rate_labels (m/s^2, "
+          "rad/s^2).")
+      .def_property_readonly(
+          "efforts", [](const Result& r) { return r.trajectory.efforts; },
+          "The input efforts at every sample: samples x effort_labels (N m for torques, N for "
+          "forces).")
+      .def_property_readonly(
+          "effort_labels", [](const Result& r) { return r.trajectory.input_labels; },
+          "The labels of the columns of efforts (Model.input_labels), e.g. 'pivot.torque'.")
+      .def_property_readonly(
+          "reactions", [](const Result& r) { return r.trajectory.reactions; },
+          "The joint reactions at every sample: samples x reaction_labels (N, N m).")
+      .def_property_readonly(
+          "reaction_labels", [](const Result& r) { return r.trajectory.reaction_labels; },
+          "The labels of the columns of reactions, e.g. 'pivot.Fx', 'pivot.Fy'.")
+      .def_property_readonly(
+          "residuals", [](const Result& r) { return r.trajectory.residuals; },
+          "The constraint residuals at every sample: samples x residual_labels, the infinity "
+          "norms of psi (position), A q1 - b (velocity) and, where recorded, A a1 - c.")
+      .def_property_readonly(
+          "residual_labels", [](const Result& r) { return r.trajectory.residual_labels; },
+          "The labels of the columns of residuals: 'residual.position', 'residual.velocity'[, "
+          "'residual.acceleration'].")
+      .def_property_readonly(
+          "outputs", [](const Result& r) { return r.trajectory.outputs; },
+          "The output columns of a scene run (its outputs: block, loads' powers, ...): samples "
+          "x output_labels; empty for a System's runs.")
+      .def_property_readonly(
+          "output_labels", [](const Result& r) { return r.trajectory.output_labels; },
+          "The labels of the columns of outputs, e.g. 'gas.power'.")
+      .def_property_readonly(
+          "stats", [](const Result& r) { return stats(r.trajectory.stats, r.warnings); },
+          "The run's statistics, a dict: cpu_seconds, warnings, steps, rhs_evaluations, "
+          "factorizations, projections, error_test_failures, stopped_by_event, t_end, "
+          "max_drift, estimated_error (None: not estimated), ... (as the CLI's run summary).")
+      .def_property_readonly(
+          "cpu_seconds", [](const Result& r) { return r.trajectory.stats.cpu_seconds; },
+          "The CPU time of the run (s); also r.stats['cpu_seconds'].")
       .def_property_readonly(
           "extremes",
           [](Result& r) {
@@ -193,10 +271,13 @@ void bind_results(py::module_& m) {
           "{label: {max, t_max, min, t_min, located, sampled_max, sampled_min}} of every effort, "
           "reaction and output column, located between the samples (computed on first read; "
           "mo2d/extremes.hpp)")
-      .def_readonly("warnings", &Result::warnings)
+      .def_readonly("warnings", &Result::warnings,
+                    "The build (sketch) warnings, then the run's, as the command line prints "
+                    "them (list of str).")
       .def(
           "csv", [](const Result& r) { return trajectory_csv(r.trajectory); },
-          "the CSV text mo2d inverse / forward writes")
+          "The CSV text `mo2d inverse` / `mo2d forward` writes for this run (str), byte for "
+          "byte.")
       .def("__repr__", [](const Result& r) {
         return std::string("<mo2d.Result ") + to_string(r.trajectory.kind) + " of '" +
                r.model->name + "': " + std::to_string(r.trajectory.time.size()) + " samples>";

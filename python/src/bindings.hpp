@@ -45,8 +45,16 @@ struct Result {
   std::optional<std::vector<Extreme>> extremes{};
 };
 
+// A label that is not a column of a result (r["pivot.torq"]): raised as mo2d.ColumnError, a
+// subclass of both mo2d.Error and KeyError, whose message names the closest column ("did you
+// mean", model/suggest.hpp, as the scene loader suggests).
+struct ColumnError : Error {
+  using Error::Error;
+};
+
 // mo2d.Error (a subclass of Exception) and the translation of mo2d::Error, SceneError and
-// ExpressionError into it, with the attributes element, time, file, line, column.
+// ExpressionError into it, with the attributes element, time, file, line, column; ColumnError
+// into mo2d.ColumnError.
 void bind_errors(py::module_& m);
 void bind_interrupts();             // Ctrl-C during a run: KeyboardInterrupt (module.cpp)
 void bind_results(py::module_& m);  // Model, Result

@@ -15,12 +15,16 @@ namespace mo2d::py_bind {
 
 namespace {
 
-// The class object of mo2d.Error, created once by bind_errors (lives as long as the module).
+// The class objects of mo2d.Error and mo2d.ColumnError, created once by bind_errors (they live as
+// long as the module).
 PyObject* error_class = nullptr;
+PyObject* column_error_class = nullptr;
 
-// Raise mo2d.Error(message) with the element, time and (scene files) location of the error.
-void raise_error(const Error& e, const Location* where, int column) {
-  py::object cls = py::reinterpret_borrow<py::object>(error_class);
+// Raise mo2d.Error(message) (or `cls`, a subclass) with the element, time and (scene files)
+// location of the error.
+void raise_error(const Error& e, const Location* where, int column,
+                 PyObject* cls_object = error_class) {
+  py::object cls = py::reinterpret_borrow<py::object>(cls_object);
   py::object instance = cls(e.what());
   instance.attr("message") = py::str(e.what());
   instance.attr("element") = py::str(e.element());
@@ -32,7 +36,7 @@ void raise_error(const Error& e, const Location* where, int column) {
   } else if (column > 0) {
     instance.attr("column") = py::int_(column);
   }
-  PyErr_SetObject(error_class, instance.ptr());
+  PyErr_SetObject(cls_object, instance.ptr());
 }
 
 // An Error that carries an exception of Python code (a law's, raised inside a run and nested by
@@ -127,6 +131,21 @@ void bind_errors(py::module_& m) {
   cls.attr("line") = py::int_(0);
   cls.attr("column") = py::int_(0);
   m.add_object("Error", cls);
+
+  // mo2d.ColumnError(mo2d.Error, KeyError): `except KeyError` and `except mo2d.Error` both catch
+  // it; str() is the message itself (KeyError's str() would quote it as a repr).
+  const py::tuple bases = py::make_tuple(cls, py::handle(PyExc_KeyError));
+  column_error_class = PyErr_NewExceptionWithDoc(
+      "mo2d.ColumnError",
+      "A label that is not a column of a result (r['pivot.torq']): a mo2d.Error and a KeyError. "
+      "The message names the closest column when one is near (\"did you mean 'pivot.torque'?\"); "
+      "element is the label asked for; r.columns lists the labels.",
+      bases.ptr(), nullptr);
+  if (column_error_class == nullptr) throw py::error_already_set();
+  py::object column_cls = py::reinterpret_borrow<py::object>(column_error_class);
+  column_cls.attr("__str__") =
+      py::module_::import("builtins").attr("BaseException").attr("__str__");
+  m.add_object("ColumnError", column_cls);
   // by value: pybind11's translator type is void (*)(std::exception_ptr)
   // NOLINTNEXTLINE(performance-unnecessary-value-param)
   py::register_exception_translator([](std::exception_ptr p) {
@@ -134,6 +153,8 @@ void bind_errors(py::module_& m) {
       if (p) std::rethrow_exception(p);
     } catch (const SceneError& e) {
       raise_error(e, &e.where(), 0);
+    } catch (const ColumnError& e) {
+      raise_error(e, nullptr, 0, column_error_class);
     } catch (const ExpressionError& e) {
       raise_error(e, nullptr, e.column());
     } catch (const Error& e) {
@@ -148,6 +169,7 @@ void bind_errors(py::module_& m) {
 
 PYBIND11_MODULE(_mo2d, m) {
   m.doc() = "mo2d: dynamics of planar mechanisms (compiled part; see docs/python.md)";
+  m.attr("__version__") = MO2D_VERSION;  // project(mo2d VERSION ...) of CMakeLists.txt
   using namespace mo2d::py_bind;
   bind_errors(m);
   bind_interrupts();

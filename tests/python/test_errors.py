@@ -53,7 +53,7 @@ def test_run_error_carries_element_and_time():
     s.add_torque("kick", "link", lambda t: math.inf if t > 0.5 else 0.0)
     model = mo2d.build_model(s)
     with pytest.raises(mo2d.Error) as info:
-        mo2d.inverse_dynamics(model, [("link.angle", "t")], t1=1.0, samples=11)
+        mo2d.inverse_dynamics(model, [("link.angle", "t")], duration=1.0, samples=11)
     e = info.value
     assert e.element == "kick" and "kick" in str(e)
     assert e.time == pytest.approx(0.6)
@@ -64,6 +64,26 @@ def test_unknown_column_of_a_result(mechanisms):
     with pytest.raises(mo2d.Error, match="no column 'pivot.torq'") as info:
         r["pivot.torq"]
     assert info.value.element == "pivot.torq" and math.isnan(info.value.time)
+
+
+def test_unknown_column_is_a_key_error_with_the_closest_label(mechanisms):
+    r = mo2d.inverse(mo2d.load_scene(mechanisms / "pendulum.yaml"))
+    assert "pivot.torque" in r.columns
+    # a mapping's error (dict-like code catches KeyError) that is also a mo2d.Error, with the
+    # suggestion the scene loader makes for a mistyped label
+    with pytest.raises(KeyError) as info:
+        r["pivot.torqe"]
+    e = info.value
+    assert isinstance(e, mo2d.ColumnError) and isinstance(e, mo2d.Error)
+    assert str(e) == ("result: no column 'pivot.torqe' (did you mean 'pivot.torque'?) "
+                      "(r.columns lists them)")
+    assert e.element == "pivot.torqe"
+    # nothing close: no suggestion
+    with pytest.raises(mo2d.ColumnError) as info:
+        r["something else entirely"]
+    assert "did you mean" not in str(info.value)
+    # a column that exists, and `in`, are unchanged
+    assert len(r["pivot.torque"]) == len(r.t) and "pivot.torqe" not in r
 
 
 def test_exception_raised_by_a_python_law_propagates():
@@ -79,7 +99,7 @@ def test_exception_raised_by_a_python_law_propagates():
     s.add_torque("bad", "link", mo2d.Law(["link.w"], law))
     model = mo2d.build_model(s)
     with pytest.raises(ZeroDivisionError, match="from the law"):
-        mo2d.inverse_dynamics(model, [("link.angle", "t")], t1=1.0, samples=11)
+        mo2d.inverse_dynamics(model, [("link.angle", "t")], duration=1.0, samples=11)
 
 
 def test_expression_error_has_its_column():
