@@ -47,22 +47,35 @@ using Table = std::shared_ptr<const LookupTable>;
 void bind_table(py::module_& m) {
   py::class_<LookupTable, std::shared_ptr<LookupTable>>(
       m, "Table",
-      "y(x) at points, a cubic spline (not-a-knot) or a polyline (mo2d/table.hpp); "
-      "table(x) for floats or NumPy arrays, table.derivatives(x) -> (S, S', S'')")
+      "A lookup table y(x) interpolated between its points: a cubic spline (not-a-knot) or a "
+      "polyline (mo2d/table.hpp).\n\n"
+      "table(x) evaluates it at a float or a NumPy array, table.derivatives(x) gives (S, S', "
+      "S''). Use it in a Python law or motion (expression strings cannot call it).\n\n"
+      "Example::\n\n"
+      "    cam = mo2d.Table('cam', [0, 1, 2, 3], [0, 0.2, 0.1, 0], extrapolation='clamp')\n"
+      "    cam(0.5), cam.derivatives(0.5)")
       .def(py::init([](std::string name, std::vector<double> x, std::vector<double> y,
                        const std::string& interpolation, const std::string& extrapolation) {
              return std::make_shared<LookupTable>(std::move(name), std::move(x), std::move(y),
                                                   table_options(interpolation, extrapolation));
            }),
            py::arg("name"), py::arg("x"), py::arg("y"), py::arg("interpolation") = "cubic",
-           py::arg("extrapolation") = "error")
-      .def_property_readonly("name", &LookupTable::name)
+           py::arg("extrapolation") = "error",
+           "A table named `name` (its errors name it) through the points (x[k], y[k]), x "
+           "strictly increasing; interpolation: 'cubic' or 'linear'; extrapolation beyond the "
+           "ends: 'error' (a mo2d.Error naming x and the range), 'clamp' (the end value) or "
+           "'periodic' (period x[-1] - x[0]). Raises mo2d.Error for x not increasing, too few "
+           "points or non-finite values.")
+      .def_property_readonly("name", &LookupTable::name, "The table's name (str).")
       .def_property_readonly(
-          "x", [](const LookupTable& t) { return std::vector<double>(t.x().begin(), t.x().end()); })
+          "x", [](const LookupTable& t) { return std::vector<double>(t.x().begin(), t.x().end()); },
+          "The abscissas of the points (list of float), increasing.")
       .def_property_readonly(
-          "y", [](const LookupTable& t) { return std::vector<double>(t.y().begin(), t.y().end()); })
+          "y", [](const LookupTable& t) { return std::vector<double>(t.y().begin(), t.y().end()); },
+          "The ordinates of the points (list of float).")
       .def(
-          "__call__", [](const LookupTable& t, double x) { return t(x); }, py::arg("x"))
+          "__call__", [](const LookupTable& t, double x) { return t(x); }, py::arg("x"),
+          "The interpolated value S(x), a float (or a NumPy array for an array x).")
       .def(
           "__call__",
           [](const LookupTable& t, const py::array_t<double>& x) {
@@ -75,7 +88,9 @@ void bind_table(py::module_& m) {
             const Jet s = t(Jet(x, 1, 0));
             return std::array<double, 3>{s.v, s.d, s.dd};
           },
-          py::arg("x"), "(S(x), S'(x), S''(x)) of the interpolant");
+          py::arg("x"),
+          "(S(x), S'(x), S''(x)): the interpolant and its first two derivatives at x, e.g. a "
+          "prescribed motion lambda t: tuple(table.derivatives(t)).");
   m.def(
       "read_table_csv",
       [](const py::object& path, std::string name, std::string x, std::string y, double scale_x,
@@ -88,7 +103,15 @@ void bind_table(py::module_& m) {
       py::arg("path"), py::arg("name"), py::arg("x") = "", py::arg("y") = "",
       py::arg("scale_x") = 1.0, py::arg("scale_y") = 1.0, py::arg("interpolation") = "cubic",
       py::arg("extrapolation") = "error",
-      "a Table from a CSV file (header of column names; x, y: the columns, default the first two)");
+      "A mo2d.Table read from a CSV file with a header of column names.\n\n"
+      "x, y: the header names of the columns (default: the first two); scale_x, scale_y: "
+      "factors applied to the values read (e.g. math.pi / 180 for degrees); interpolation, "
+      "extrapolation: as in mo2d.Table. Raises mo2d.Error naming the file and the line "
+      "(an unknown column with the closest name, a cell that is not a number, x not "
+      "increasing).\n\n"
+      "Example::\n\n"
+      "    cam = mo2d.read_table_csv('cam.csv', 'cam', x='angle', y='lift',\n"
+      "                              scale_x=math.pi / 180)");
 }
 
 // A law of time only as a time function (a feed-forward); a law that reads the state is refused.
@@ -112,10 +135,19 @@ void bind_control(py::module_& m) {
       },
       py::arg("coordinate"), py::arg("kp"), py::arg("kd"), py::arg("reference") = py::none(),
       py::arg("rate") = "", py::arg("feed_forward") = py::none(), py::arg("params") = Params{},
-      "the effort law u = u_ff(t) + kp (r - x) + kd (r' - x') (a mo2d.Law for efforts=); "
-      "reference: an expression of t or a callable returning (r, r', r'')");
+      "A PD controller as an effort law: u = u_ff(t) + kp (r - x) + kd (r' - x').\n\n"
+      "coordinate: the controlled coordinate label x ('bar.angle', 'slide.q'); kp (N m/rad or "
+      "N/m), kd (N m s/rad or N s/m): the gains (>= 0); reference: r(t), an expression of t or "
+      "a callable returning (r, r', r'') (None: 0); rate: the quasi-velocity label of x "
+      "(default rate_label(coordinate)); feed_forward: a law of t only (None: 0); params: "
+      "constants of the expressions. Returns a mo2d.Law for forward_dynamics(efforts=...).\n\n"
+      "Example::\n\n"
+      "    law = mo2d.pd_control('bar.angle', kp=5.0, kd=1.0, reference='0.4 * sin(2 * t)')\n"
+      "    r = mo2d.forward_dynamics(model, x0, duration=2.0, efforts=[('pivot.torque', law)])");
   m.def("rate_label", &rate_label, py::arg("coordinate"),
-        "the quasi-velocity label of a coordinate label ('crank.A.x' -> 'crank.A.vx')");
+        "The quasi-velocity label of a coordinate label, as build_model names them: "
+        "'crank.A.x' -> 'crank.A.vx', 'rail.q' -> 'rail.v', an extra coordinate 'crank.angle' "
+        "-> 'crank.angle.rate'.");
   m.def(
       "efforts_from_inverse",
       [](const Model& model, const Motions& motion, const Params& params) {
@@ -124,7 +156,11 @@ void bind_control(py::module_& m) {
         return out;
       },
       py::arg("model"), py::arg("motion"), py::arg("params") = Params{},
-      "one mo2d.Law of t per input: the inverse-dynamics effort of the motion, solved at each t");
+      "The feed-forward efforts of a motion: one mo2d.Law of t per input (in the order of "
+      "model.input_labels), each solving inverse dynamics of `motion` ([(coordinate label, "
+      "s(t))], as in inverse_dynamics) at the t it is called with.\n\n"
+      "Example::\n\n"
+      "    ff, = mo2d.efforts_from_inverse(model, [('bar.angle', '0.4 * sin(2 * t)')])");
 }
 
 TransmissionShaft to_shaft(const py::dict& d) {
@@ -173,7 +209,14 @@ void bind_transmission(py::module_& m) {
       },
       py::arg("housing_mass"), py::arg("housing_com"), py::arg("housing_inertia"),
       py::arg("shafts"), py::arg("name") = "transmission",
-      "the lumped equivalent (Gamba 2009) of a gear train: shafts=[{mass, inertia, axis, ratio}]");
+      "The lumped equivalent (Gamba 2009) of a gear train in a housing: two shafts A and B "
+      "and the housing that carry the same inertia.\n\n"
+      "housing_mass (kg), housing_com (x, y) (m, housing frame), housing_inertia (kg m^2): the "
+      "housing's own mass data; shafts: [dict(mass (kg), inertia (kg m^2 about its axis), "
+      "axis (x, y) (m), ratio (its rate relative to the reference shaft's, both relative to "
+      "the housing))]. Returns a dict: ratio, inertia_a, inertia_b, shaft_mass, axis, "
+      "housing_mass, housing_com, housing_inertia and the invariants sigma, s, p. Raises "
+      "mo2d.Error (element `name`) for negative masses, no shafts or no rotational inertia.");
 }
 
 // Runs of a second formulation and replayed results: inverse_dynamics_lagrange, efforts from a
@@ -181,17 +224,22 @@ void bind_transmission(py::module_& m) {
 void bind_run_extras(py::module_& m) {
   m.def(
       "inverse_dynamics_lagrange",
-      [](const std::shared_ptr<Model>& model, const Motions& motion, double t0, double t1,
-         const py::object& samples, const Params& params) {
+      [](const std::shared_ptr<Model>& model, const Motions& motion, double t0,
+         const py::object& duration, const py::object& samples, const Params& params,
+         const py::object& t1) {
         InverseOptions o;
         o.t0 = t0;
-        o.t1 = t1;
+        o.t1 = end_time("inverse_dynamics_lagrange", t0, duration, t1, 1.0);
         o.samples = to_count(samples, "samples");
         return make_result(model, inverse_dynamics_lagrange(*model, to_motions(motion, params), o));
       },
-      py::arg("model"), py::arg("motion"), py::arg("t0") = 0.0, py::arg("t1") = 1.0,
-      py::arg("samples") = py::int_(501), py::arg("params") = Params{},
-      "inverse dynamics by Lagrange multipliers on a model built with reduction='none'");
+      py::arg("model"), py::arg("motion"), py::arg("t0") = 0.0, py::arg("duration") = py::none(),
+      py::arg("samples") = py::int_(501), py::arg("params") = Params{}, py::kw_only(),
+      py::arg("t1") = py::none(),
+      "Inverse dynamics by Lagrange multipliers (a second formulation, to check "
+      "inverse_dynamics against) on a model built with reduction='none'.\n\n"
+      "motion, t0 (s), duration (s, default 1), samples, params: as in inverse_dynamics; t1: "
+      "the end time, deprecated (use duration). Returns a mo2d.Result.");
   m.def(
       "efforts_from_samples",
       [](const Result& r) {
@@ -199,12 +247,16 @@ void bind_run_extras(py::module_& m) {
         for (auto& f : efforts_from_samples(r.trajectory)) out.emplace_back(f);
         return out;
       },
-      py::arg("result"), "one mo2d.Law of t per input: the run's efforts, cubic Hermite in t");
+      py::arg("result"),
+      "The efforts of a run replayed: one mo2d.Law of t per input (the order of "
+      "result.effort_labels), cubic Hermite between the samples; e.g. the efforts of "
+      "inverse dynamics fed to forward dynamics.");
   const py::object result = m.attr("Result");  // bound by bind_results
   py::class_<Result> c(result);
   c.def_property_readonly(
       "units", [](const Result& r) { return trajectory_csv_units(*r.model, r.trajectory); },
-      "the SI unit of every column of r.columns ('' where the model cannot say)");
+      "The SI unit of every column, a list parallel to r.columns ('s', 'm', 'rad', 'N', "
+      "'N m', 'J', ...; '' where the model cannot say).");
 }
 
 void bind_system_extras(py::module_& m) {
@@ -218,7 +270,11 @@ void bind_system_extras(py::module_& m) {
        },
        py::arg("name"), py::arg("body"), py::arg("driver"), py::arg("carrier") = "ground",
        py::arg("ratio") = 1.0,
-       "gear pair: omega_body - omega_carrier = ratio (omega_driver - omega_carrier)")
+       "Add a gear pair: the driving body `driver` turns the driven body `body`, both carried "
+       "by `carrier` ('ground' allowed): omega_body - omega_carrier = ratio (omega_driver - "
+       "omega_carrier); ratio = -z_driver / z_body for external spur gears. Adds the "
+       "coordinate '<name>.phi' and the reactions '<name>.torque' (N m, the mesh torque on "
+       "body) and '<name>.carrier_torque'.")
       .def(
           "add_rack",
           [](System& s, const std::string& name, const std::string& slide,
@@ -226,7 +282,11 @@ void bind_system_extras(py::module_& m) {
             s.add_rack({name, slide, pinion, radius});
           },
           py::arg("name"), py::arg("slide"), py::arg("pinion"), py::arg("radius"),
-          "rack and pinion: q' = radius (omega_pinion - omega_carrier)")
+          "Add a rack and pinion: the slide coordinate q of the prismatic or pin-in-slot "
+          "joint `slide` follows the pinion's rotation relative to the slide's axis body: q' = "
+          "radius (omega_pinion - omega_carrier), radius (m) signed and non-zero. Adds the "
+          "coordinate '<name>.phi' and the reaction '<name>.force' (N, on the rack along the "
+          "axis).")
       .def(
           "add_constraint",
           [](System& s, const std::string& name, const std::string& psi, const Params& params) {
@@ -234,7 +294,11 @@ void bind_system_extras(py::module_& m) {
             s.add_constraint(PositionConstraintDef{name, law.args, law.f});
           },
           py::arg("name"), py::arg("psi"), py::arg("params") = Params{},
-          "position constraint psi(x, t) = 0, an expression of coordinate labels and t")
+          "Add a position constraint psi(x, t) = 0: psi an expression string of coordinate "
+          "labels ('m.P.x', 'slide.q', ...) and t, with the constants params; derived exactly. "
+          "Its multiplier is the reaction '<name>.lambda'.\n\n"
+          "Example::\n\n"
+          "    s.add_constraint('rod', 'm.P.x^2 + m.P.y^2 - L^2', params={'L': 0.7})")
       .def(
           "add_velocity_constraint",
           [](System& s, const std::string& name, const std::string& g, const Params& params) {
@@ -246,7 +310,12 @@ void bind_system_extras(py::module_& m) {
             s.add_constraint(std::move(v));
           },
           py::arg("name"), py::arg("g"), py::arg("params") = Params{},
-          "velocity constraint g = 0, an expression linear in quasi-velocity labels");
+          "Add a velocity constraint g = 0 (non-holonomic, e.g. rolling without slipping): g "
+          "an expression string linear in quasi-velocity labels ('m.P.vx', 'crank.w'), its "
+          "coefficients functions of coordinate labels and t; build_model refuses a g that is "
+          "not linear in the rates. Its multiplier is '<name>.lambda'.\n\n"
+          "Example::\n\n"
+          "    s.add_velocity_constraint('diagonal', 'm.P.vx - m.P.vy')");
 }
 
 }  // namespace

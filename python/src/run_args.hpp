@@ -21,6 +21,14 @@ using Motions = std::vector<std::pair<std::string, pybind11::object>>;  // label
 // "incompatible function arguments"); a float or a bool is a TypeError naming it.
 int to_count(const pybind11::object& value, const char* name);
 
+// The end time of a run of a System, t0 + duration: duration= is the name of the scene files'
+// run.duration, of the command line's --duration and of mo2d.forward / inverse. The end time t1=
+// (the C++ options' name, the keyword of these functions until 0.1.0) is still accepted, with a
+// DeprecationWarning, for one release; both given is a TypeError. Neither: t0 + default_duration,
+// or a TypeError naming the missing argument when default_duration is NaN (no default).
+double end_time(const char* function, double t0, const pybind11::object& duration,
+                const pybind11::object& t1, double default_duration);
+
 // "rk4" -> Integrator::rk4 (to_string's names); another name is an Error listing them.
 Integrator to_integrator(const std::string& s);
 Formulation to_formulation(const std::string& s);

@@ -39,7 +39,8 @@ def run(system, integrator, **kwargs):
     model = mo2d.build_model(system)
     x0 = mo2d.consistent_state(model, positions=[("link.angle", 0.0)],
                                velocities=[("link.w", 0.5)])
-    return mo2d.forward_dynamics(model, x0, t1=1.0, samples=11, integrator=integrator, **kwargs)
+    return mo2d.forward_dynamics(model, x0, duration=1.0, samples=11, integrator=integrator,
+                                 **kwargs)
 
 
 def check(info, law, element, role):
@@ -111,7 +112,7 @@ def test_a_law_in_inverse_dynamics_names_the_load():
     s.add_torque("brake", "link", mo2d.Law(["link.w"], law))
     model = mo2d.build_model(s)
     with pytest.raises(ValueError, match="inverse") as info:
-        mo2d.inverse_dynamics(model, [("link.angle", "t")], t1=1.0, samples=11)
+        mo2d.inverse_dynamics(model, [("link.angle", "t")], duration=1.0, samples=11)
     check(info, law, "brake", "torque")
     assert info.value.mo2d_time == pytest.approx(0.4)  # the first sample past T_FAIL
 
@@ -135,7 +136,7 @@ def test_a_motion_raising_in_inverse_dynamics_names_the_coordinate():
 
     model = mo2d.build_model(pendulum())
     with pytest.raises(IndexError, match="no such motion") as info:
-        mo2d.inverse_dynamics(model, [("link.angle", motion)], t1=1.0, samples=11)
+        mo2d.inverse_dynamics(model, [("link.angle", motion)], duration=1.0, samples=11)
     e = info.value
     assert e.mo2d_element == "link.angle" and e.mo2d_time == times[-1] == pytest.approx(0.4)
     assert "prescribed motion of 'link.angle' failed at t = 0.4 s" in e.mo2d_message

@@ -67,7 +67,7 @@ def test_a_table_drives_a_motion():
     table = mo2d.Table("path", xs, cubic(xs)[0])
     model = mo2d.build_model(rotor(inertia=0.4))
     r = mo2d.inverse_dynamics(model, [("bar.angle", lambda t: tuple(table.derivatives(t)))],
-                              t1=2.0, samples=21)
+                              duration=2.0, samples=21)
     np.testing.assert_allclose(r["pivot.torque"], 0.4 * cubic(r.t)[2], rtol=1e-10, atol=1e-12)
 
 
@@ -79,7 +79,7 @@ def test_pd_control_follows_the_closed_loop_equation():
     law = mo2d.pd_control("bar.angle", kp=kp, kd=kd, reference=ref)
     assert law.labels == ["bar.angle", mo2d.rate_label("bar.angle")]
     x0 = mo2d.consistent_state(model, positions=[("bar.angle", 0.0)], velocities=[("bar.w", 0)])
-    r = mo2d.forward_dynamics(model, x0, t1=3.0, samples=61, rtol=1e-11, atol=1e-12,
+    r = mo2d.forward_dynamics(model, x0, duration=3.0, samples=61, rtol=1e-11, atol=1e-12,
                               efforts=[("pivot.torque", law)])
     zeta_w = kd / (2 * J)
     wd = math.sqrt(kp / J - zeta_w**2)
@@ -101,7 +101,7 @@ def test_pd_control_with_the_exact_feed_forward_tracks_exactly():
     law = mo2d.pd_control("bar.angle", kp=5.0, kd=1.0, reference=reference, feed_forward=ff)
     x0 = mo2d.consistent_state(model, positions=[("bar.angle", 0.0)],
                                velocities=[("bar.w", 0.8)])
-    r = mo2d.forward_dynamics(model, x0, t1=2.0, samples=41, rtol=1e-11, atol=1e-12,
+    r = mo2d.forward_dynamics(model, x0, duration=2.0, samples=41, rtol=1e-11, atol=1e-12,
                               efforts=[("pivot.torque", law)])
     assert np.max(np.abs(r["bar.angle"] - 0.4 * np.sin(2 * r.t))) < 1e-7
     with pytest.raises(mo2d.Error, match="kp"):
@@ -126,7 +126,7 @@ def test_a_gear_pair_reflects_the_driven_inertia():
     ratio, jk, jj = -2.5, 0.02, 0.3
     model = mo2d.build_model(two_rotors(ratio, jk, jj))
     assert model.dof == 1 and "mesh.phi" in model.coordinate_labels
-    r = mo2d.inverse_dynamics(model, [("k.angle", "sin(4 * t)")], t1=1.0, samples=11)
+    r = mo2d.inverse_dynamics(model, [("k.angle", "sin(4 * t)")], duration=1.0, samples=11)
     dd = -16 * np.sin(4 * r.t)
     np.testing.assert_allclose(r["pk.torque"], (jk + ratio**2 * jj) * dd, rtol=1e-10,
                                atol=1e-12)
@@ -148,7 +148,7 @@ def test_a_rack_and_pinion():
     s.add_coordinate("pinion.angle", rate=[("pinion.w", 1.0)])
     s.add_rack("mesh", slide="slide", pinion="pinion", radius=radius)
     model = mo2d.build_model(s)
-    r = mo2d.inverse_dynamics(model, [("pinion.angle", "t^3")], t1=1.0, samples=11)
+    r = mo2d.inverse_dynamics(model, [("pinion.angle", "t^3")], duration=1.0, samples=11)
     np.testing.assert_allclose(r["pivot.torque"], (J + m * radius**2) * 6 * r.t, rtol=1e-10,
                                atol=1e-12)
     np.testing.assert_allclose(r["slide.q"], radius * r.t**3, rtol=1e-10, atol=1e-12)
@@ -174,9 +174,9 @@ def test_a_position_constraint_makes_a_pendulum():
     a, b = system(True), system(False)
     assert a.dof == 1
     ra = mo2d.forward_dynamics(a, mo2d.consistent_state(a, velocities=[("m.P.vy", 0.5)]),
-                               t1=1.5, samples=16, rtol=1e-11, atol=1e-12)
+                               duration=1.5, samples=16, rtol=1e-11, atol=1e-12)
     rb = mo2d.forward_dynamics(b, mo2d.consistent_state(b, velocities=[("m.P.vy", 0.5)]),
-                               t1=1.5, samples=16, rtol=1e-11, atol=1e-12)
+                               duration=1.5, samples=16, rtol=1e-11, atol=1e-12)
     np.testing.assert_allclose(ra["m.P.x"], rb["m.P.x"], rtol=0, atol=1e-7)
     np.testing.assert_allclose(ra["m.P.y"], rb["m.P.y"], rtol=0, atol=1e-7)
     assert np.max(np.abs(np.hypot(ra["m.P.x"], ra["m.P.y"]) - Lp)) < 1e-9
@@ -219,8 +219,8 @@ def test_stop_when_finds_the_quarter_period(integrator):
     model = mo2d.build_model(s)
     angle = model.coordinate_labels.index("m.angle")
     x0 = mo2d.consistent_state(model, velocities=[("m.w", 0.0)])
-    r = mo2d.forward_dynamics(model, x0, t1=2.0, samples=201, integrator=integrator, rtol=1e-11,
-                              atol=1e-12, step=1e-4,
+    r = mo2d.forward_dynamics(model, x0, duration=2.0, samples=201, integrator=integrator,
+                              rtol=1e-11, atol=1e-12, step=1e-4,
                               stop_when=lambda t, q0, q1: q0[angle] + math.pi / 2)
     k = math.sin(math.pi / 4)
     quarter = math.sqrt(Lp / G) * math.pi / (2 * agm(1.0, math.sqrt(1 - k * k)))
@@ -272,9 +272,9 @@ MOTION = [("link.angle", "0.5 * sin(3 * t) + t^2")]
 
 def test_inverse_dynamics_by_lagrange_multipliers():
     model = mo2d.build_model(pendulum_system(), reduction="none")
-    r = mo2d.inverse_dynamics_lagrange(model, MOTION, t1=1.0, samples=21)
+    r = mo2d.inverse_dynamics_lagrange(model, MOTION, duration=1.0, samples=21)
     np.testing.assert_allclose(r["pivot.torque"], pendulum_torque(r.t), rtol=1e-9, atol=1e-9)
-    flat = mo2d.inverse_dynamics(mo2d.build_model(pendulum_system()), MOTION, t1=1.0,
+    flat = mo2d.inverse_dynamics(mo2d.build_model(pendulum_system()), MOTION, duration=1.0,
                                  samples=21)
     np.testing.assert_allclose(r["pivot.torque"], flat["pivot.torque"], rtol=1e-10, atol=1e-10)
 
@@ -286,7 +286,7 @@ def test_efforts_from_samples_interpolate_the_run():
     model = mo2d.build_model(pendulum_system())
 
     def midpoint_errors(samples):
-        r = mo2d.inverse_dynamics(model, MOTION, t1=1.0, samples=samples)
+        r = mo2d.inverse_dynamics(model, MOTION, duration=1.0, samples=samples)
         (law,) = mo2d.efforts_from_samples(r)
         assert law([], r.t[3]) == pytest.approx(r["pivot.torque"][3], rel=1e-14)
         mid = (r.t[1:] + r.t[:-1]) / 2
@@ -300,7 +300,7 @@ def test_efforts_from_samples_interpolate_the_run():
 
 def test_units_of_the_columns():
     model = mo2d.build_model(pendulum_system())
-    r = mo2d.inverse_dynamics(model, MOTION, t1=1.0, samples=3)
+    r = mo2d.inverse_dynamics(model, MOTION, duration=1.0, samples=3)
     units = dict(zip(r.columns, r.units))
     assert len(r.units) == len(r.columns)
     assert (units["t"], units["link.P.x"], units["link.w"], units["pivot.torque"],

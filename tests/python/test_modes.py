@@ -112,7 +112,7 @@ def test_python_callable_spring_law_gives_the_expression_frequency():
 def test_linearize_along_a_forward_result():
     model = pendulum(theta0=-math.pi / 2 + 0.8)
     x0 = mo2d.consistent_state(model, velocities=[("link.w", 0.0)])
-    r = mo2d.forward_dynamics(model, x0, t1=1.0, samples=11, rtol=1e-10, atol=1e-12)
+    r = mo2d.forward_dynamics(model, x0, duration=1.0, samples=11, rtol=1e-10, atol=1e-12)
     along = mo2d.linearize(r)
     assert len(along) == 11
     assert all(ss.states == along[0].states for ss in along)

@@ -37,7 +37,7 @@ def closed_form(t, c=0.0):
 def test_inverse_dynamics_of_a_python_system_is_the_closed_form():
     model = mo2d.build_model(pendulum())
     assert model.dof == 1 and model.input_labels == ["pivot.torque"]
-    r = mo2d.inverse_dynamics(model, MOTION, t1=2.0, samples=201)
+    r = mo2d.inverse_dynamics(model, MOTION, duration=2.0, samples=201)
     np.testing.assert_allclose(r["pivot.torque"], closed_form(r.t), rtol=1e-9, atol=1e-9)
 
 
@@ -46,7 +46,7 @@ def test_motion_as_a_callable_with_its_derivatives():
     motion = [("link.angle", lambda t: (0.5 * math.sin(3 * t) + t * t,
                                         1.5 * math.cos(3 * t) + 2 * t,
                                         -4.5 * math.sin(3 * t) + 2))]
-    r = mo2d.inverse_dynamics(model, motion, t1=2.0, samples=51)
+    r = mo2d.inverse_dynamics(model, motion, duration=2.0, samples=51)
     np.testing.assert_allclose(r["pivot.torque"], closed_form(r.t), rtol=1e-9, atol=1e-9)
 
 
@@ -58,7 +58,7 @@ def test_motion_as_a_callable_with_its_derivatives():
 def test_state_dependent_load_from_python_in_inverse_dynamics(damper):
     model = mo2d.build_model(pendulum(damper=damper) if not isinstance(damper, str) else
                              _expression_pendulum(damper))
-    r = mo2d.inverse_dynamics(model, MOTION, t1=2.0, samples=101)
+    r = mo2d.inverse_dynamics(model, MOTION, duration=2.0, samples=101)
     np.testing.assert_allclose(r["pivot.torque"], closed_form(r.t, C), rtol=1e-9, atol=1e-9)
 
 
@@ -74,7 +74,8 @@ def test_python_damper_in_forward_dynamics_matches_the_linear_damper():
         x0 = mo2d.consistent_state(model, positions=[("link.angle", 0.2)],
                                    velocities=[("link.w", 1.0)])
         # a fixed step: both runs take the same steps, so only the damper's torque can differ
-        return mo2d.forward_dynamics(model, x0, t1=1.0, samples=21, integrator="rk4", step=1e-3)
+        return mo2d.forward_dynamics(model, x0, duration=1.0, samples=21, integrator="rk4",
+                                     step=1e-3)
 
     calls = []
 
@@ -95,10 +96,10 @@ def test_forward_efforts_from_python():
     x0 = mo2d.consistent_state(model, positions=[("link.angle", 0.0)],
                                velocities=[("link.w", 0.0)])
     # the torque that holds the mass still at the horizontal: M g L
-    r = mo2d.forward_dynamics(model, x0, t1=0.5, samples=11,
+    r = mo2d.forward_dynamics(model, x0, duration=0.5, samples=11,
                               efforts=[("pivot.torque", M * G * L)])
     assert np.max(np.abs(r["link.angle"])) < 1e-8
-    r = mo2d.forward_dynamics(model, x0, t1=0.5, samples=11,
+    r = mo2d.forward_dynamics(model, x0, duration=0.5, samples=11,
                               efforts=[("pivot.torque", lambda t: M * G * L)])
     assert np.max(np.abs(r["link.angle"])) < 1e-8
 
@@ -130,11 +131,11 @@ def test_four_bar_built_in_python_agrees_with_box2d():
     s.add_revolute("rocker_pivot", "ground.B0", "rocker.O")
     s.add_coordinate("crank.angle", rate=[("crank.w", 1.0)])
     s.set_gravity((0, -9.81))
-    report = mo2d.crosscheck_inverse(s, [("crank.angle", "pi/2 + 2*pi*t")], t1=1.0)
+    report = mo2d.crosscheck_inverse(s, [("crank.angle", "pi/2 + 2*pi*t")], duration=1.0)
     assert report["agree"], report["failures"]
     # and the same numbers as the scene file of the same mechanism
     model = mo2d.build_model(s)
-    r = mo2d.inverse_dynamics(model, [("crank.angle", "pi/2 + 2*pi*t")], t1=2.0, samples=401)
+    r = mo2d.inverse_dynamics(model, [("crank.angle", "pi/2 + 2*pi*t")], duration=2.0, samples=401)
     from conftest import MECHANISMS
     q = mo2d.inverse(mo2d.load_scene(MECHANISMS / "fourbar.yaml"))
     np.testing.assert_allclose(r["crank_pivot.torque"], q["crank_pivot.torque"], rtol=1e-9,
@@ -156,7 +157,7 @@ def test_python_law_derivatives_reach_the_bdf_newton_matrix():
         model = mo2d.build_model(s)
         x0 = mo2d.consistent_state(model, positions=[("link.angle", 0.05)],
                                    velocities=[("link.w", 0.0)])
-        return mo2d.forward_dynamics(model, x0, t1=0.5, samples=11, integrator="cvode_bdf",
+        return mo2d.forward_dynamics(model, x0, duration=0.5, samples=11, integrator="cvode_bdf",
                                      rtol=1e-7, atol=1e-9)
 
     a = run(mo2d.Law(["angle", "rate"], lambda x, t: -k * x[0] - c * x[1]))

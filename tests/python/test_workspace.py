@@ -83,7 +83,8 @@ def test_accelerations_and_reactions_are_those_of_the_forward_run(model):
     """At every recorded state of mo2d.forward_dynamics the workspace gives the run's a1 and its
     reactions (the same evaluation)."""
     x0 = state(model, 0.2, 1.0)
-    r = mo2d.forward_dynamics(model, x0, t1=1.0, samples=11, efforts=[("pivot.torque", "0.3*t")])
+    r = mo2d.forward_dynamics(model, x0, duration=1.0, samples=11,
+                              efforts=[("pivot.torque", "0.3*t")])
     ws = mo2d.ForwardWorkspace(model, efforts=[("pivot.torque", "0.3*t")])
     for k in range(len(r)):
         a = ws.accelerations(r.t[k], r.q0[k], r.q1[k])
@@ -116,7 +117,7 @@ def test_a_state_of_the_wrong_size_is_an_error(model):
 
 def test_inverse_workspace_is_one_sample_of_the_run(model):
     motion = [("link.angle", "0.5 * sin(3 * t) + t^2")]
-    r = mo2d.inverse_dynamics(model, motion, t1=1.0, samples=11)
+    r = mo2d.inverse_dynamics(model, motion, duration=1.0, samples=11)
     iw = mo2d.InverseWorkspace(model, motion)
     for k in [3, 7, 10]:  # any order of samples
         iw.solve(r.t[k])
@@ -149,8 +150,8 @@ def test_energy_balance_of_a_run():
     x0 = state(model, 0.3, 2.0)
 
     def run(step):
-        return mo2d.forward_dynamics(model, x0, t1=2.0, samples=41, integrator="rk4", step=step,
-                                     efforts=[("pivot.torque", "0.5 * sin(2 * t)")])
+        return mo2d.forward_dynamics(model, x0, duration=2.0, samples=41, integrator="rk4",
+                                     step=step, efforts=[("pivot.torque", "0.5 * sin(2 * t)")])
 
     r = run(1e-3)
     e = mo2d.energy_balance(r)
