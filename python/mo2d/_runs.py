@@ -56,8 +56,22 @@ def _with(scene, settings, keys):
 
 def inverse(scene, *, t0=None, duration=None, samples=None, tolerance=None, max_steps=None,
             max_seconds=None, max_memory=None):
-    """Inverse dynamics of a scene, as `mo2d inverse` runs it (no files written); the run
-    settings given replace the scene's (`mo2d inverse --duration ...`)."""
+    """Inverse dynamics of a scene, as `mo2d inverse` runs it (no files written).
+
+    scene: a mo2d.Scene (mo2d.load_scene). The run settings given replace the scene's run:
+    block for this run, as the command line's flags do (`mo2d inverse --duration ...`): t0
+    (s), duration (s; the run ends at t0 + duration), samples, tolerance (the position
+    tolerance, relative to the mechanism's size), max_steps, max_seconds (s), max_memory
+    (bytes). A number is passed as the command line would pass it, a string as an expression
+    of the parameters (duration="2 * T"); None keeps the scene's. Returns a mo2d.Result;
+    raises mo2d.Error naming the flag for a bad setting ("--duration: run.duration: must be >
+    0 s"), and naming the time and the element for a failed run. Releases the GIL.
+
+    Example::
+
+        r = mo2d.inverse(mo2d.load_scene("mechanisms/fourbar.yaml"), samples=1001)
+        r["crank_pivot.torque"]
+    """
     settings = dict(t0=t0, duration=duration, samples=samples, tolerance=tolerance,
                     max_steps=max_steps, max_seconds=max_seconds, max_memory=max_memory)
     return _mo2d._inverse(_with(scene, settings, INVERSE_KEYS))
@@ -66,11 +80,25 @@ def inverse(scene, *, t0=None, duration=None, samples=None, tolerance=None, max_
 def forward(scene, *, t0=None, duration=None, samples=None, integrator=None, formulation=None,
             rtol=None, atol=None, step=None, max_steps=None, max_seconds=None, max_memory=None,
             accuracy=None, error_estimate=None):
-    """Forward dynamics of a scene from its initial state, as `mo2d forward` runs it; the run
-    settings given replace the scene's (`mo2d forward --integrator rk4 --step 1e-4 ...`);
-    accuracy=1e-6: mo2d picks the integrator and its tolerances (`--accuracy 1e-6`);
-    error_estimate="on" | "off" | "automatic": the a-posteriori estimate of the global error
-    (`--error-estimate`; r.stats["estimated_error"])."""
+    """Forward dynamics of a scene from its initial state, as `mo2d forward` runs it.
+
+    scene: a mo2d.Scene. The run settings given replace the scene's for this run, as the
+    command line's flags (`mo2d forward --integrator rk4 --step 1e-4 ...`): t0 (s), duration
+    (s; the run ends at t0 + duration), samples, integrator ("cvode_bdf", "cvode_adams",
+    "rk4", "dopri5", "erk6", "erk8", "baumgarte"), formulation, rtol, atol, step (s),
+    accuracy=1e-6 (mo2d picks the integrator and its tolerances, `--accuracy`),
+    error_estimate="on" | "off" | "automatic" (the a-posteriori estimate of the global error,
+    r.stats["estimated_error"]), and the budgets max_steps, max_seconds (s), max_memory
+    (bytes). None keeps the scene's. Returns a mo2d.Result with the energies; raises
+    mo2d.Error naming the flag for a bad setting, the time and the variable for a failed
+    run. Releases the GIL.
+
+    Example::
+
+        f = mo2d.forward(mo2d.load_scene("mechanisms/double_fourbar.yaml"), duration=0.5,
+                         integrator="rk4", step=1e-4)
+        f["energy.kinetic"], f.stats["steps"]
+    """
     settings = dict(t0=t0, duration=duration, samples=samples, integrator=integrator,
                     formulation=formulation, rtol=rtol, atol=atol, step=step, accuracy=accuracy,
                     error_estimate=error_estimate, max_steps=max_steps, max_seconds=max_seconds, max_memory=max_memory)

@@ -115,16 +115,22 @@ py::dict shape_of(const StateSpace& ss, const Mode& md) {
 
 void bind_state_space(py::module_& m) {
   py::class_<Mode>(m, "Mode",
-                   "One eigenvalue of G (a complex pair once, Im > 0): omega_n (rad/s), hz, "
-                   "damping_ratio, omega_d, the shape dz (position states) and dq0 (every "
-                   "coordinate)")
-      .def_readonly("eigenvalue", &Mode::eigenvalue)
-      .def_readonly("omega_n", &Mode::omega_n)
-      .def_readonly("omega_d", &Mode::omega_d)
-      .def_readonly("hz", &Mode::hz)
-      .def_readonly("damping_ratio", &Mode::damping_ratio)
-      .def_readonly("oscillatory", &Mode::oscillatory)
-      .def_readonly("rigid", &Mode::rigid)
+                   "A vibration mode: one eigenvalue of G (a complex pair once, Im > 0), its "
+                   "frequencies, damping and shape (mo2d.modes, StateSpace.modes).\n\n"
+                   "Example::\n\n"
+                   "    for md in mo2d.modes(scene):\n"
+                   "        print(md.hz, md.damping_ratio)")
+      .def_readonly("eigenvalue", &Mode::eigenvalue, "The eigenvalue lambda of G (1/s), a complex.")
+      .def_readonly("omega_n", &Mode::omega_n, "The natural frequency |lambda| (rad/s).")
+      .def_readonly("omega_d", &Mode::omega_d, "The damped frequency |Im lambda| (rad/s).")
+      .def_readonly("hz", &Mode::hz, "The natural frequency omega_n / (2 pi) (Hz).")
+      .def_readonly("damping_ratio", &Mode::damping_ratio,
+                    "The damping ratio -Re lambda / |lambda| (1 for a real negative lambda, -1 "
+                    "for a real positive one: unstable).")
+      .def_readonly("oscillatory", &Mode::oscillatory, "True when Im lambda != 0.")
+      .def_readonly("rigid", &Mode::rigid,
+                    "True when |lambda| is about 0: a rigid-body or drift motion, not a "
+                    "vibration.")
       .def_readonly("x", &Mode::x, "the eigenvector in the states")
       .def_readonly("dz", &Mode::dz, "the real position shape, largest component 1")
       .def_readonly("dq0", &Mode::dq0, "dq0/dz dz: every coordinate (every node)")
@@ -133,24 +139,43 @@ void bind_state_space(py::module_& m) {
                " rad/s, zeta=" + std::to_string(md.damping_ratio) + ">";
       });
   py::class_<StateSpace>(m, "StateSpace",
-                         "dx/dt = G x + H u, y = C x + D u about a reference (mo2d.linearize)")
-      .def_readonly("t", &StateSpace::t)
-      .def_readonly("G", &StateSpace::G)
-      .def_readonly("H", &StateSpace::H)
-      .def_readonly("C", &StateSpace::C)
-      .def_readonly("D", &StateSpace::D)
-      .def_readonly("states", &StateSpace::states, "p coordinate labels, then dof rate labels")
-      .def_readonly("inputs", &StateSpace::inputs)
-      .def_readonly("outputs", &StateSpace::outputs)
-      .def_readonly("p", &StateSpace::p)
-      .def_readonly("dof", &StateSpace::dof)
+                         "A linear model dx/dt = G x + H u, y = C x + D u about a reference "
+                         "state (mo2d.linearize; docs/linearization.md).\n\n"
+                         "x = (z, w): p independent coordinates then dof quasi-velocities, "
+                         "deviations from the reference; u the efforts, y the outputs.\n\n"
+                         "Example::\n\n"
+                         "    ss = mo2d.linearize(model)\n"
+                         "    ss.G, ss.states, [md.hz for md in ss.modes]")
+      .def_readonly("t", &StateSpace::t, "The time of the reference (s).")
+      .def_readonly("G", &StateSpace::G, "The state matrix (n x n, NumPy), n = p + dof.")
+      .def_readonly("H", &StateSpace::H, "The input matrix (n x inputs).")
+      .def_readonly("C", &StateSpace::C, "The output matrix (outputs x n).")
+      .def_readonly("D", &StateSpace::D, "The feedthrough matrix (outputs x inputs).")
+      .def_readonly("states", &StateSpace::states,
+                    "The labels of the states x: p coordinate labels, then dof rate labels.")
+      .def_readonly("inputs", &StateSpace::inputs,
+                    "The labels of the inputs u (Model.input_labels).")
+      .def_readonly("outputs", &StateSpace::outputs,
+                    "The labels of the outputs y (the outputs= asked for).")
+      .def_readonly("p", &StateSpace::p, "The number of position states (coordinates z).")
+      .def_readonly("dof", &StateSpace::dof, "The number of velocity states (quasi-velocities w).")
       .def_readonly("drift", &StateSpace::drift, "dx/dt at the reference (0 at an equilibrium)")
       .def_readonly("u", &StateSpace::u, "the reference efforts")
-      .def_readonly("dq0_dz", &StateSpace::dq0_dz)
-      .def_readonly("dq1_dw", &StateSpace::dq1_dw)
-      .def_readonly("dq1_dz", &StateSpace::dq1_dz)
-      .def_readonly("conditioning", &StateSpace::conditioning)
-      .def_readonly("approximate", &StateSpace::approximate)
+      .def_readonly("dq0_dz", &StateSpace::dq0_dz,
+                    "The tangent basis of the positions (coordinates x p): how every "
+                    "coordinate moves with z.")
+      .def_readonly("dq1_dw", &StateSpace::dq1_dw,
+                    "The basis of the velocities (quasi-velocities x dof): q1 = dq1_dw w at fixed "
+                    "position.")
+      .def_readonly("dq1_dz", &StateSpace::dq1_dz,
+                    "How the quasi-velocities change with the position z at fixed w "
+                    "(quasi-velocities x p).")
+      .def_readonly("conditioning", &StateSpace::conditioning,
+                    "How well the chosen coordinates parametrize the state here: 1 ideal, 0 "
+                    "singular (the smaller smallest singular value of the two tangent bases).")
+      .def_readonly("approximate", &StateSpace::approximate,
+                    "What was differenced numerically rather than derived exactly (str; '' when "
+                    "nothing).")
       .def_property_readonly(
           "reference",
           [](const StateSpace& ss) {
@@ -163,11 +188,16 @@ void bind_state_space(py::module_& m) {
             return independent_state(ss, {ss.t, ss.q0, ss.q1});
           },
           "the reference in the states")
-      .def_property_readonly("modes", [](const StateSpace& ss) { return vibration_modes(ss); })
+      .def_property_readonly(
+          "modes", [](const StateSpace& ss) { return vibration_modes(ss); },
+          "The vibration modes of G (list of mo2d.Mode): oscillatory ones by ascending "
+          "omega_n, then the real ones.")
       .def(
           "shape", [](const StateSpace& ss, const Mode& md) { return shape_of(ss, md); },
           py::arg("mode"), "a mode's dz as {state label: value}")
-      .def("csv", &state_space_csv, py::arg("matrix"), "one matrix ('G', 'H', 'C', 'D') as CSV")
+      .def("csv", &state_space_csv, py::arg("matrix"),
+           "One matrix ('G', 'H', 'C' or 'D') as the CSV text `mo2d linearize` writes: a header "
+           "of the column labels, one row per row label, 17 significant digits.")
       .def(
           "json", [](const StateSpace& ss) { return state_space_json(ss, vibration_modes(ss)); },
           "the JSON `mo2d linearize` writes")
@@ -175,19 +205,32 @@ void bind_state_space(py::module_& m) {
         return "<mo2d.StateSpace at t=" + std::to_string(ss.t) + ": " + std::to_string(ss.n()) +
                " states, " + std::to_string(ss.inputs.size()) + " inputs>";
       });
-  py::class_<Equilibrium>(m, "Equilibrium", "A static equilibrium (mo2d.static_equilibrium)")
-      .def_readonly("state", &Equilibrium::state)
-      .def_readonly("iterations", &Equilibrium::iterations)
-      .def_readonly("residual", &Equilibrium::residual)
-      .def_readonly("moved", &Equilibrium::moved)
-      .def_readonly("linear", &Equilibrium::linear, "the StateSpace there")
-      .def_readonly("stiffness", &Equilibrium::stiffness)
-      .def_readonly("reduced_mass", &Equilibrium::reduced_mass)
-      .def_readonly("stiffness_eigenvalues", &Equilibrium::stiffness_eigenvalues)
-      .def_readonly("asymmetry", &Equilibrium::asymmetry)
-      .def_readonly("stability", &Equilibrium::stability)
-      .def_property_readonly("modes",
-                             [](const Equilibrium& e) { return vibration_modes(e.linear); })
+  py::class_<Equilibrium>(m, "Equilibrium",
+                          "A static equilibrium (mo2d.static_equilibrium): the state at rest, "
+                          "how it converged, its stiffness, stability and linearization.\n\n"
+                          "Example::\n\n"
+                          "    eq = mo2d.static_equilibrium(scene)\n"
+                          "    eq.stability, eq.state.q0, eq.modes[0].hz")
+      .def_readonly("state", &Equilibrium::state, "The state at rest (a mo2d.State, q1 = 0).")
+      .def_readonly("iterations", &Equilibrium::iterations, "The Newton iterations taken.")
+      .def_readonly("residual", &Equilibrium::residual,
+                    "|E a1| at the end: the accelerations left (m/s^2 and rad/s^2 mixed).")
+      .def_readonly("moved", &Equilibrium::moved,
+                    "The largest coordinate change from the start (m or rad).")
+      .def_readonly("linear", &Equilibrium::linear, "The StateSpace about the equilibrium.")
+      .def_readonly("stiffness", &Equilibrium::stiffness,
+                    "The reduced stiffness Kr = -Mr G21 (p x p): the Hessian of the potential "
+                    "in the coordinates z for conservative loads.")
+      .def_readonly("reduced_mass", &Equilibrium::reduced_mass,
+                    "The reduced mass Mr = dq1_dw^T M dq1_dw (dof x dof).")
+      .def_readonly("stiffness_eigenvalues", &Equilibrium::stiffness_eigenvalues,
+                    "The eigenvalues of (Kr + Kr^T) / 2, ascending (all > 0: stable).")
+      .def_readonly("asymmetry", &Equilibrium::asymmetry,
+                    "|Kr - Kr^T| / |Kr|: non-zero for follower loads or feedback.")
+      .def_readonly("stability", &Equilibrium::stability, "'stable', 'unstable' or 'neutral'.")
+      .def_property_readonly(
+          "modes", [](const Equilibrium& e) { return vibration_modes(e.linear); },
+          "The vibration modes about the equilibrium (list of mo2d.Mode), as `mo2d modes`.")
       .def("__repr__", [](const Equilibrium& e) {
         return "<mo2d.Equilibrium " + e.stability + ", " + std::to_string(e.iterations) +
                " iterations>";
@@ -202,15 +245,33 @@ void bind_modes(py::module_& m) {
         py::arg("coordinates") = Labels{}, py::arg("velocities") = Labels{},
         py::arg("outputs") = Labels{}, py::arg("efforts") = Efforts{}, py::arg("params") = Params{},
         py::arg("scene") = py::none(), py::arg("min_conditioning") = 1e-3,
-        "x a Model or Scene: the StateSpace about `state` (default: a forward scene's initial "
-        "state, else the model's configuration at rest). x a Result: a list of StateSpace along "
-        "it, all in the same coordinates (the run's effort laws: scene= or efforts=)");
+        "Linearize a mechanism: dx/dt = G x + H u, y = C x + D u.\n\n"
+        "x a Model or a Scene: the StateSpace about `state` (a mo2d.State; default: a forward "
+        "scene's initial state, else the model's configuration at rest). x a Result: a list of "
+        "StateSpace, one per sample, all in the same coordinates; give the run's effort laws "
+        "(scene= the scene it ran, or efforts=), checked against the run's; min_conditioning: "
+        "the least conditioning of the coordinates allowed along it. coordinates, velocities: "
+        "the state's labels to use (default: chosen by pivoting); outputs: output labels for "
+        "y; efforts: [(input label, law)]; params: constants of the expressions. Raises "
+        "mo2d.Error naming the time and the coordinates (a singular configuration, coordinates "
+        "that stop parametrizing the motion).\n\n"
+        "Example::\n\n"
+        "    ss = mo2d.linearize(mo2d.load_scene('mechanisms/pendulum.yaml'))\n"
+        "    ss.G, ss.modes[0].omega_n");
   m.def("static_equilibrium", &equilibrium_py, py::arg("x"), py::arg("q0") = py::none(),
         py::arg("t") = 0.0, py::arg("coordinates") = Labels{}, py::arg("outputs") = Labels{},
         py::arg("efforts") = Efforts{}, py::arg("params") = Params{}, py::arg("tolerance") = 1e-10,
         py::arg("max_iterations") = 50,
-        "the equilibrium nearest q0 (default: the scene's initial configuration) of a Model or "
-        "Scene, with its stiffness, stability and linearization");
+        "The static equilibrium of a Model or Scene nearest q0 (default: the scene's initial "
+        "configuration, or the model's), by Newton on the reduced equations at rest.\n\n"
+        "t (s): the time of the loads; coordinates, outputs, efforts, params: as in "
+        "linearize; tolerance: on the accelerations, relative to gravity; max_iterations: "
+        "Newton's budget. Returns a mo2d.Equilibrium with its stiffness, stability and "
+        "linearization. Raises mo2d.Error (with the residual and the iterations) where it "
+        "does not converge.\n\n"
+        "Example::\n\n"
+        "    eq = mo2d.static_equilibrium(model)\n"
+        "    eq.stability, eq.stiffness");
   m.def(
       "modes",
       [](const py::object& x, const Labels& coordinates, const Efforts& efforts,
@@ -224,8 +285,12 @@ void bind_modes(py::module_& m) {
       },
       py::arg("x"), py::arg("coordinates") = Labels{}, py::arg("efforts") = Efforts{},
       py::arg("params") = Params{},
-      "the vibration modes of a StateSpace or an Equilibrium, or of a Model / Scene at its static "
-      "equilibrium (as `mo2d modes`)");
+      "The vibration modes (list of mo2d.Mode) of a StateSpace or an Equilibrium, or of a "
+      "Model / Scene at its static equilibrium, as `mo2d modes`: oscillatory ones by "
+      "ascending omega_n, then the real ones. coordinates, efforts, params: as in "
+      "static_equilibrium.\n\n"
+      "Example::\n\n"
+      "    [md.hz for md in mo2d.modes(mo2d.load_scene('mechanisms/pendulum.yaml'))]");
 }
 
 }  // namespace mo2d::py_bind

@@ -60,7 +60,15 @@ void bind_render(py::module_& m) {
       py::arg("result"), py::arg("path"), py::arg("sample") = 0, py::arg("width") = 800,
       py::arg("height") = 600, py::arg("labels") = false, py::arg("loads") = false,
       py::arg("traces") = std::vector<std::string>{},
-      "one sample of a result drawn to PATH (.png, .svg or .pdf)");
+      "Draw one sample of a result to `path`, the format from its extension (.png, .svg or "
+      ".pdf).\n\n"
+      "sample: the sample's index; width, height: the image size (pixels); labels: name the "
+      "bodies; loads: draw the applied forces and torques; traces: labels of points "
+      "('link.P') whose paths over the run are drawn. Raises mo2d.Error for an unknown label or a "
+      "file that "
+      "cannot be written.\n\n"
+      "Example::\n\n"
+      "    mo2d.write_frame(r, 'frame.svg', sample=10, labels=True, traces=['link.P'])");
   m.def(
       "write_filmstrip",
       [](const Result& r, const std::string& path, int frames, int columns, bool labels,
@@ -74,18 +82,27 @@ void bind_render(py::module_& m) {
       },
       py::arg("result"), py::arg("path"), py::arg("frames") = 6, py::arg("columns") = 3,
       py::arg("labels") = false, py::arg("traces") = std::vector<std::string>{},
-      "frames equally spaced over the run, side by side, to PATH (.png, .svg or .pdf)");
+      "Draw `frames` samples equally spaced over the run side by side, in rows of `columns`, "
+      "to `path` (.png, .svg or .pdf); labels, traces: as in write_frame.\n\n"
+      "Example::\n\n"
+      "    mo2d.write_filmstrip(r, 'strip.png', frames=6, columns=3, traces=['coupler.B'])");
   m.def(
       "write_plot",
       [](const Result& r, const std::string& path, const std::string& which) {
         write_plot(standard_plot(r, which), path);
       },
       py::arg("result"), py::arg("path"), py::arg("which") = "efforts",
-      "the plot `mo2d render` draws: 'efforts', 'residuals' or 'energies' (forward runs)");
+      "Draw the plot `mo2d render` draws to `path` (.png, .svg or .pdf): which = 'efforts', "
+      "'residuals' or 'energies' (forward runs only). Raises mo2d.Error for another name.");
   m.def("write_series_plot", &write_series_plot, py::arg("path"), py::arg("series"),
         py::arg("title") = "", py::arg("xlabel") = "", py::arg("ylabel") = "",
         py::arg("log_y") = false, py::arg("width") = 800, py::arg("height") = 500,
-        "series: [(label, x, y)]: the project's renderer on any data");
+        "Plot any data with the project's renderer to `path` (.png, .svg or .pdf): series = "
+        "[(label, x, y)], x and y sequences of equal length; title, xlabel, ylabel: text; "
+        "log_y: a logarithmic y axis; width, height: pixels.\n\n"
+        "Example::\n\n"
+        "    mo2d.write_series_plot('torque.svg', [('torque', r.t, r['pivot.torque'])],\n"
+        "                           xlabel='time (s)', ylabel='torque (N m)')");
 }
 
 }  // namespace mo2d::py_bind

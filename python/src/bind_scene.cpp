@@ -122,42 +122,90 @@ const char* solve_name(Solve s) {
 }  // namespace
 
 void bind_run_settings(py::class_<SourcedScene, std::shared_ptr<SourcedScene>>& c) {
-  c.def_property_readonly("tolerance", [](const SourcedScene& s) { return s.run.tolerance; })
-      .def_property_readonly("integrator",
-                             [](const SourcedScene& s) { return to_string(s.run.integrator); })
-      .def_property_readonly("formulation",
-                             [](const SourcedScene& s) { return to_string(s.run.formulation); })
-      .def_property_readonly("rtol", [](const SourcedScene& s) { return s.run.rtol; })
-      .def_property_readonly("atol", [](const SourcedScene& s) { return s.run.atol; })
-      .def_property_readonly("step", [](const SourcedScene& s) { return s.run.step; })
-      .def_property_readonly("max_steps", [](const SourcedScene& s) { return s.run.max_steps; })
-      .def_property_readonly("max_seconds", [](const SourcedScene& s) { return s.run.max_seconds; })
-      .def_property_readonly("max_memory", [](const SourcedScene& s) { return s.run.max_memory; })
+  c.def_property_readonly(
+       "tolerance", [](const SourcedScene& s) { return s.run.tolerance; },
+       "run.tolerance: the position tolerance of inverse dynamics' Newton solve (relative to "
+       "the mechanism's size; `--tolerance`).")
+      .def_property_readonly(
+          "integrator", [](const SourcedScene& s) { return to_string(s.run.integrator); },
+          "run.integrator of forward runs: 'cvode_bdf', 'cvode_adams', 'rk4', 'dopri5', 'erk6', "
+          "'erk8' or 'baumgarte' (`--integrator`).")
+      .def_property_readonly(
+          "formulation", [](const SourcedScene& s) { return to_string(s.run.formulation); },
+          "run.formulation of forward runs: 'augmented_lagrangian', 'lagrange' or 'null_space' "
+          "(`--formulation`).")
+      .def_property_readonly(
+          "rtol", [](const SourcedScene& s) { return s.run.rtol; },
+          "run.rtol: the relative tolerance of the adaptive integrators (`--rtol`).")
+      .def_property_readonly(
+          "atol", [](const SourcedScene& s) { return s.run.atol; },
+          "run.atol: the absolute tolerance of the adaptive integrators, in the units of the "
+          "state (`--atol`).")
+      .def_property_readonly(
+          "step", [](const SourcedScene& s) { return s.run.step; },
+          "run.step (s): the fixed step of forward runs with rk4 or baumgarte (`--step`).")
+      .def_property_readonly(
+          "max_steps", [](const SourcedScene& s) { return s.run.max_steps; },
+          "run.max_steps: the step budget of a forward run; a run that needs more stops with "
+          "a mo2d.Error naming the time (`--max-steps`).")
+      .def_property_readonly(
+          "max_seconds", [](const SourcedScene& s) { return s.run.max_seconds; },
+          "run.max_seconds: the wall-clock budget of a run (s; `--max-seconds`).")
+      .def_property_readonly(
+          "max_memory", [](const SourcedScene& s) { return s.run.max_memory; },
+          "run.max_memory: the memory budget of a run's dense matrices and results (bytes; "
+          "`--max-memory`).")
       .def_property_readonly(
           "run_overrides", [](const SourcedScene& s) { return s.run_overrides; },
-          "the run settings given on top of the scene's run: block, in order")
+          "The run settings given on top of the scene's run: block (list of (key, text)), in "
+          "order (load_scene(run=...), mo2d.forward(scene, duration=...)).")
       .def("with_run", &with_run, py::arg("run"),
-           "the scene read again with these run settings [(key, text)] on top (RunOverride)");
+           "The scene read again (from its kept text) with these run settings on top of its "
+           "own: run is a list of (key, text), e.g. [('duration', '2')], as `--duration 2`. "
+           "Returns a new mo2d.Scene; raises mo2d.Error naming the flag for a bad value.");
 }
 
 void bind_scene(py::module_& m) {
   py::class_<SourcedScene, std::shared_ptr<SourcedScene>> c(
-      m, "Scene", "A scene file, read and checked (mo2d.load_scene)");
-  c.def_readonly("file", &Scene::file)
-      .def_readonly("name", &Scene::name)
-      .def_property_readonly("parameters",
-                             [](const SourcedScene& s) {
-                               py::dict d;
-                               for (const auto& [k, v] : s.parameters) d[py::str(k)] = v;
-                               return d;
-                             })
-      .def_property_readonly("solve", [](const SourcedScene& s) { return solve_name(s.run.solve); })
-      .def_property_readonly("t0", [](const SourcedScene& s) { return s.run.t0; })
-      .def_property_readonly("duration", [](const SourcedScene& s) { return s.run.duration; })
-      .def_property_readonly("samples", [](const SourcedScene& s) { return s.run.samples; })
+      m, "Scene",
+      "A scene file, read and checked (mo2d.load_scene, mo2d.parse_scene; "
+      "docs/scene-format.md).\n\n"
+      "Its parameters, the settings of its run: block (read-only; give others to the runs: "
+      "mo2d.forward(scene, duration=2)) and its model. The scene keeps its text: a file edited "
+      "after load_scene is not read again.\n\n"
+      "Example::\n\n"
+      "    scene = mo2d.load_scene('mechanisms/fourbar.yaml', set={'a': 0.12})\n"
+      "    scene.parameters['a'], scene.duration, scene.integrator\n"
+      "    r = mo2d.inverse(scene)");
+  c.def_readonly("file", &Scene::file,
+                 "The path of the scene file (or the file_name given to parse_scene).")
+      .def_readonly("name", &Scene::name, "The scene's name (its name: key; 'scene' without one).")
+      .def_property_readonly(
+          "parameters",
+          [](const SourcedScene& s) {
+            py::dict d;
+            for (const auto& [k, v] : s.parameters) d[py::str(k)] = v;
+            return d;
+          },
+          "The scene's parameters evaluated, after set= overrides: a dict {name: float}.")
+      .def_property_readonly(
+          "solve", [](const SourcedScene& s) { return solve_name(s.run.solve); },
+          "run.solve: 'inverse' or 'forward', the run the scene asks for.")
+      .def_property_readonly(
+          "t0", [](const SourcedScene& s) { return s.run.t0; },
+          "run.t0: the start time of the runs (s; `--t0`).")
+      .def_property_readonly(
+          "duration", [](const SourcedScene& s) { return s.run.duration; },
+          "run.duration: the length of the runs (s); they end at t0 + duration "
+          "(`--duration`).")
+      .def_property_readonly(
+          "samples", [](const SourcedScene& s) { return s.run.samples; },
+          "run.samples: the number of samples of a run, ends included; 0: the default, 501 "
+          "(inverse) or 101 (forward) (`--samples`).")
       .def(
           "build_model", [](const SourcedScene& s) { return scene_model(s); },
-          "the model of the scene (checks the labels it uses)")
+          "The mo2d.Model of the scene, as `mo2d info` builds it (checks the labels the scene "
+          "uses; raises mo2d.Error with file:line:column).")
       .def("__repr__", [](const SourcedScene& s) {
         return "<mo2d.Scene '" + s.name + "' from " + s.file + ">";
       });
@@ -190,8 +238,14 @@ void bind_scene(py::module_& m) {
         return crosscheck_dict(r);
       },
       py::arg("scene"), py::arg("step") = 1.0 / 2000,
-      "Box2D cross-check of the scene's inverse dynamics (mo2d crosscheck): a dict with agree, "
-      "the worst relative errors, failures and the per-channel errors");
+      "Cross-check a scene's inverse dynamics against Box2D, as `mo2d crosscheck` does.\n\n"
+      "Drives the scene's prescribed motion in a Box2D world stepped at `step` (s) and compares "
+      "the joint reactions and efforts. Returns a dict with 'agree' (bool), the worst relative "
+      "errors, 'failures' and the per-channel errors and time series. Raises mo2d.Error when "
+      "the motion does not prescribe every degree of freedom.\n\n"
+      "Example::\n\n"
+      "    report = mo2d.crosscheck(mo2d.load_scene('mechanisms/fourbar.yaml'))\n"
+      "    report['agree']");
 }
 
 }  // namespace mo2d::py_bind

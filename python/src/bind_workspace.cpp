@@ -83,37 +83,82 @@ std::pair<VectorXd, VectorXd> project(ForwardWorkspace& w, double t, VectorXd q0
 void bind_forward_workspace(py::module_& m) {
   using W = ForwardWorkspace;
   py::class_<W>(m, "ForwardWorkspace",
-                "The workspace of forward dynamics (ForwardData): accelerations, multipliers, "
-                "projection and reactions at a state, one evaluation at a time")
+                "The workspace of forward dynamics (ForwardData): the accelerations, multipliers, "
+                "projection and reactions at a state, one evaluation at a time.\n\n"
+                "The equations are M a1 = f + B u - A^T lambda, A a1 = c; after a call to "
+                "accelerations, the properties (a, multipliers, M, A, ...) are those of that "
+                "state (NumPy copies).\n\n"
+                "Example::\n\n"
+                "    ws = mo2d.ForwardWorkspace(model, efforts=[('pivot.torque', '0.3 * t')])\n"
+                "    a1 = ws.accelerations(0.0, model.q0, np.zeros(len(model.rate_labels)))\n"
+                "    ws.multipliers")
       .def(py::init(&make_forward), py::arg("model"), py::arg("integrator") = "cvode_bdf",
            py::arg("formulation") = "augmented_lagrangian", py::arg("efforts") = Motions{},
-           py::arg("params") = Params{}, py::arg("penalty") = 0.0)
-      .def_property_readonly("model", [](const W& w) { return w.model; })
+           py::arg("params") = Params{}, py::arg("penalty") = 0.0,
+           "A workspace for `model`: integrator and formulation as in forward_dynamics (the "
+           "integrator matters for 'baumgarte', whose feedback enters c); efforts: [(input "
+           "label, law)] used when accelerations() is given no efforts; params: constants of "
+           "the expressions; penalty: the augmented-Lagrangian penalty (0: the default, 1e7 of "
+           "the mass scale).")
+      .def_property_readonly(
+          "model", [](const W& w) { return w.model; }, "The mo2d.Model of the workspace.")
       .def("accelerations", &accelerations, py::arg("t"), py::arg("q0"), py::arg("q1"),
            py::arg("efforts") = py::none(),
-           "a1 = d/dt q1 at the state (M a1 = f + B u - A^T lambda, A a1 = c)")
+           "The accelerations a1 = d/dt q1 (m/s^2, rad/s^2) at the state (t (s), q0, q1), "
+           "solving M a1 = f + B u - A^T lambda, A a1 = c; with the workspace's effort laws, "
+           "or efforts= the values u (one per input, N m or N). Raises mo2d.Error for sizes "
+           "that do not match the model.")
       .def("reactions", &reactions, py::arg("t"), py::arg("q0"), py::arg("q1"),
-           "the joint reactions (Model.reaction_labels) at the state")
+           "The joint reactions at the state (N, N m), in the order of Model.reaction_labels, "
+           "with the workspace's effort laws.")
       .def("project", &project, py::arg("t"), py::arg("q0"), py::arg("q1"),
-           py::arg("tolerance") = py::none(), "(q0, q1) projected on psi = 0 and A q1 = b")
+           py::arg("tolerance") = py::none(),
+           "(q0, q1) projected on the constraints psi(q0, t) = 0 and A q1 = b (minimum-norm "
+           "corrections); tolerance: on the residuals (default 1e-12 of the model's size). "
+           "Returns the tuple (q0, q1).")
       .def(
           "pivot_indicator",
           [](W& w, double t, const VectorXd& q0) {
             check_state(*w.model, q0, VectorXd::Zero(w.model->n1));
             return w.data->pivot_indicator(t, q0);
           },
-          py::arg("t"), py::arg("q0"), "(sigma_min / sigma_max)^2 of the dimensionless A")
-      .def_property_readonly("a", [](const W& w) { return w.data->a; })
-      .def_property_readonly("multipliers", [](const W& w) { return w.data->lambda; })
-      .def_property_readonly("efforts", [](const W& w) { return w.data->u; })
-      .def_property_readonly("f", [](const W& w) { return w.data->f; })
-      .def_property_readonly("Bu", [](const W& w) { return w.data->Bu; })
-      .def_property_readonly("c", [](const W& w) { return w.data->c; })
-      .def_property_readonly("A", [](const W& w) { return w.data->A; })
-      .def_property_readonly("b", [](const W& w) { return w.data->b; })
-      .def_property_readonly("M", [](const W& w) { return w.data->M; })
-      .def_property_readonly("B", [](const W& w) { return w.data->B; })
-      .def_property_readonly("accurate", [](const W& w) { return w.data->accel_ok; });
+          py::arg("t"), py::arg("q0"),
+          "How far the constraint rows are from losing rank at q0: (sigma_min / sigma_max)^2 "
+          "of the dimensionless A (1 well conditioned, 0 singular, e.g. a toggle position).")
+      .def_property_readonly(
+          "a", [](const W& w) { return w.data->a; },
+          "The accelerations a1 of the last accelerations() call (NumPy).")
+      .def_property_readonly(
+          "multipliers", [](const W& w) { return w.data->lambda; },
+          "The multipliers lambda of the last call: M a = f + B u - A^T lambda.")
+      .def_property_readonly(
+          "efforts", [](const W& w) { return w.data->u; },
+          "The efforts u of the last call, one per input (N m, N).")
+      .def_property_readonly(
+          "f", [](const W& w) { return w.data->f; },
+          "The applied and velocity-dependent forces f of the last call (gravity, loads, "
+          "springs, the quadratic velocity terms).")
+      .def_property_readonly(
+          "Bu", [](const W& w) { return w.data->Bu; }, "B u of the last call.")
+      .def_property_readonly(
+          "c", [](const W& w) { return w.data->c; },
+          "The right-hand side c of A a1 = c at the last state.")
+      .def_property_readonly(
+          "A", [](const W& w) { return w.data->A; },
+          "The velocity constraint matrix A (A q1 = b) at the last state (rows x n1).")
+      .def_property_readonly(
+          "b", [](const W& w) { return w.data->b; },
+          "The right-hand side b of A q1 = b at the last state.")
+      .def_property_readonly(
+          "M", [](const W& w) { return w.data->M; },
+          "The mass matrix M (n1 x n1) at the last state.")
+      .def_property_readonly(
+          "B", [](const W& w) { return w.data->B; },
+          "The input matrix B (n1 x inputs): the generalized forces of unit efforts.")
+      .def_property_readonly(
+          "accurate", [](const W& w) { return w.data->accel_ok; },
+          "False when the last accelerations were regularized (the constraints near "
+          "singular): they are then not accurate.");
 }
 
 // An InverseData with its model (InverseData copies the prescribed motions).
@@ -146,55 +191,101 @@ py::dict residuals(const InverseData& d) {
 void bind_inverse_workspace(py::module_& m) {
   using W = InverseWorkspace;
   py::class_<W>(m, "InverseWorkspace",
-                "The workspace of inverse dynamics (InverseData): solve(t) solves one sample")
+                "The workspace of inverse dynamics (InverseData): solve(t) solves one sample "
+                "of a prescribed motion, then its properties hold that sample.\n\n"
+                "Example::\n\n"
+                "    iw = mo2d.InverseWorkspace(model, [('link.angle', '0.5 * sin(3 * t)')])\n"
+                "    iw.solve(0.25)\n"
+                "    iw.efforts, iw.reactions")
       .def(py::init(&make_inverse), py::arg("model"), py::arg("motion"),
            py::arg("params") = Params{}, py::arg("position_tolerance") = 1e-12,
-           py::arg("complement") = "prescribed")
-      .def_property_readonly("model", [](const W& w) { return w.model; })
+           py::arg("complement") = "prescribed",
+           "A workspace for `model` driven by motion=[(coordinate label, s(t))] (as in "
+           "inverse_dynamics); params: constants of the expressions; position_tolerance: "
+           "|psi| of the position solve, relative to the model's size; complement: "
+           "'prescribed' or 'recursive'.")
+      .def_property_readonly(
+          "model", [](const W& w) { return w.model; }, "The mo2d.Model of the workspace.")
       .def(
           "solve", [](W& w, double t) { inverse_dynamics_sample(*w.model, *w.data, t); },
-          py::arg("t"), "positions, velocities, accelerations, efforts and reactions at t")
-      .def_property_readonly("t", [](const W& w) { return w.data->t; })
-      .def_property_readonly("q0", [](const W& w) { return w.data->q0; })
-      .def_property_readonly("q1", [](const W& w) { return w.data->q1; })
-      .def_property_readonly("a1", [](const W& w) { return w.data->a1; })
-      .def_property_readonly("efforts", [](const W& w) { return w.data->u; })
-      .def_property_readonly("multipliers", [](const W& w) { return w.data->lambda; })
-      .def_property_readonly("reactions", [](const W& w) { return w.data->reactions; })
-      .def_property_readonly("friction", [](const W& w) { return w.data->friction; })
-      .def_property_readonly("residuals", [](const W& w) { return residuals(*w.data); })
-      .def_property_readonly("newton_iterations",
-                             [](const W& w) { return w.data->newton_iterations; })
-      .def_property_readonly("pivot_ratio", [](const W& w) { return w.data->pivot_ratio; })
-      .def_property_readonly("warnings", [](W& w) {
-        finish_inverse_warnings(*w.data);
-        return w.data->warnings;
-      });
+          py::arg("t"),
+          "Solve the sample at time t (s): positions, velocities, accelerations, efforts and "
+          "reactions, starting Newton from the previous sample. Raises mo2d.Error naming the "
+          "time (a singular configuration, a position that does not assemble).")
+      .def_property_readonly(
+          "t", [](const W& w) { return w.data->t; }, "The time of the last sample solved (s).")
+      .def_property_readonly(
+          "q0", [](const W& w) { return w.data->q0; },
+          "The coordinates of the last sample (Model.coordinate_labels; m, rad).")
+      .def_property_readonly(
+          "q1", [](const W& w) { return w.data->q1; },
+          "The quasi-velocities of the last sample (Model.rate_labels; m/s, rad/s).")
+      .def_property_readonly(
+          "a1", [](const W& w) { return w.data->a1; },
+          "The accelerations of the last sample (m/s^2, rad/s^2).")
+      .def_property_readonly(
+          "efforts", [](const W& w) { return w.data->u; },
+          "The efforts of the last sample (Model.input_labels; N m, N).")
+      .def_property_readonly(
+          "multipliers", [](const W& w) { return w.data->lambda; },
+          "The constraint multipliers lambda of the last sample.")
+      .def_property_readonly(
+          "reactions", [](const W& w) { return w.data->reactions; },
+          "The joint reactions of the last sample (Model.reaction_labels; N, N m).")
+      .def_property_readonly(
+          "friction", [](const W& w) { return w.data->friction; },
+          "The joint frictions of the last sample, one per friction (N, N m), consistent with "
+          "the reactions.")
+      .def_property_readonly(
+          "residuals", [](const W& w) { return residuals(*w.data); },
+          "The constraint residuals of the last sample: {'position', 'velocity', "
+          "'acceleration'} (infinity norms).")
+      .def_property_readonly(
+          "newton_iterations", [](const W& w) { return w.data->newton_iterations; },
+          "The Newton iterations of the last sample's position solve.")
+      .def_property_readonly(
+          "pivot_ratio", [](const W& w) { return w.data->pivot_ratio; },
+          "min/max |pivot| of the last sample's factorization (near 0: near a singular "
+          "configuration).")
+      .def_property_readonly(
+          "warnings",
+          [](W& w) {
+            finish_inverse_warnings(*w.data);
+            return w.data->warnings;
+          },
+          "The warnings of the samples solved so far (list of str), e.g. a near-singular "
+          "configuration with its time.");
 }
 
 void bind_energies(py::module_& m) {
   m.def(
       "energy_balance", [](const Result& r) { return energy_balance(r.trajectory); },
       py::arg("result"),
-      "K + V - (K + V)(t0) - W_inputs - W_loads - W_constraints + D at every sample (J): the "
-      "integration error of a forward run");
+      "The energy balance of a forward run at every sample (J, a NumPy array): K + V - (K + "
+      "V)(t0) - W_inputs - W_loads - W_constraints + D, zero for an exact solution, so its "
+      "size is the integration error. Raises mo2d.Error for a run without energies (inverse "
+      "dynamics).");
   m.def(
       "energy_balance_error", [](const Result& r) { return energy_balance_error(r.trajectory); },
-      py::arg("result"), "max |energy_balance(result)|");
+      py::arg("result"),
+      "max |energy_balance(result)| (J): one number for the integration error of a forward "
+      "run.");
   m.def(
       "kinetic_energy",
       [](const Model& model, const VectorXd& q1) {
         check_state(model, model.q0, q1);
         return kinetic_energy(model, q1);
       },
-      py::arg("model"), py::arg("q1"), "1/2 q1^T M q1");
+      py::arg("model"), py::arg("q1"),
+      "The kinetic energy 1/2 q1^T M q1 (J) of the quasi-velocities q1 (Model.rate_labels).");
   m.def(
       "potential_energy",
       [](const Model& model, const VectorXd& q0) {
         check_state(model, q0, VectorXd::Zero(model.n1));
         return potential_energy(model, q0);
       },
-      py::arg("model"), py::arg("q0"), "gravity and linear springs");
+      py::arg("model"), py::arg("q0"),
+      "The potential energy (J) at the coordinates q0: gravity and the linear springs.");
 }
 
 }  // namespace
