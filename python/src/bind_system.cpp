@@ -10,6 +10,7 @@
 #include "bindings.hpp"
 #include "laws.hpp"
 #include "mo2d/error.hpp"
+#include "mo2d/sketched_body.hpp"
 #include "mo2d/system.hpp"
 
 namespace mo2d::py_bind {
@@ -29,8 +30,9 @@ std::string type_name(const py::handle& v) {
 
 // nodes={"O": (0, 0), "A": (0, 0.1)} (insertion order kept) or [("O", (0, 0)), ...]; anything
 // else is a TypeError naming the body and the node (not pybind11's "Unable to cast").
-NodeList to_nodes(const std::string& body, const py::object& nodes) {
-  const std::string what = "add_body('" + body + "'): nodes: ";
+NodeList to_nodes(const std::string& body, const py::object& nodes,
+                  const std::string& field = "nodes") {
+  const std::string what = "add_body('" + body + "'): " + field + ": ";
   const std::string form = "a dict {name: (x, y)} or a list [(name, (x, y)), ...]";
   if (py::isinstance<py::str>(nodes) || py::isinstance<py::bytes>(nodes) ||
       !(py::isinstance<py::dict>(nodes) || py::isinstance<py::sequence>(nodes)))
@@ -78,12 +80,55 @@ SpringActs to_acts(const std::string& s) {
   throw Error("spring acts: 'both', 'tension_only' or 'compression_only', not '" + s + "'", s);
 }
 
+std::vector<NodeDef> to_node_defs(const NodeList& list) {
+  std::vector<NodeDef> out;
+  for (const auto& [n, p] : list) out.push_back({n, v2(p)});
+  return out;
+}
+
+// The geometry of add_body, as scene files give it (mo2d/sketched_body.hpp): exact nodes; a
+// shape (one point per node) with nodes as its sketch; a bar's length with its two nodes as the
+// sketch; or a shape {name: (x, y)} placed approximately by at=((x, y), angle).
+BodyDef body_geometry(const std::string& name, const py::object& nodes, const py::object& shape,
+                      const std::optional<double>& length, const py::object& at) {
+  const std::string what = "add_body('" + name + "'): ";
+  if (!at.is_none()) {
+    if (!nodes.is_none() || shape.is_none() || length)
+      throw py::type_error(what +
+                           "at= places a shape={name: (x, y)} given without nodes= or "
+                           "length= (the sketch is the placement)");
+    std::pair<P2, double> placement;
+    try {
+      placement = at.cast<std::pair<P2, double>>();
+    } catch (const py::cast_error&) {
+      throw py::type_error(what + "at: ((x, y), angle), not " + py::repr(at).cast<std::string>());
+    }
+    return placed_body(name, to_node_defs(to_nodes(name, shape, "shape")),
+                       {v2(placement.first), placement.second});
+  }
+  if (nodes.is_none()) throw py::type_error(what + "nodes= missing (or shape= with at=)");
+  std::vector<NodeDef> sketch = to_node_defs(to_nodes(name, nodes));
+  if (length) {
+    if (!shape.is_none()) throw py::type_error(what + "give either shape= or length=, not both");
+    if (sketch.size() != 2)
+      throw py::type_error(what +
+                           "a bar given by its length has exactly two nodes (the first at "
+                           "(0, 0), the second at (length, 0) in its frame)");
+    return bar_body(name, *length, std::move(sketch[0]), std::move(sketch[1]));
+  }
+  BodyDef b{.name = name, .nodes = std::move(sketch)};
+  if (!shape.is_none())
+    for (const auto& p : shape.cast<std::vector<P2>>()) b.shape.push_back(v2(p));
+  return b;
+}
+
 void add_body(System& s, const std::string& name, const py::object& nodes, double mass,
               double inertia, const py::object& com, const std::optional<P2>& com_point,
-              const std::vector<P2>& shape) {
-  BodyDef b{.name = name, .mass = mass, .inertia = inertia, .com = to_com(com, com_point)};
-  for (const auto& [n, p] : to_nodes(name, nodes)) b.nodes.push_back({n, v2(p)});
-  for (const auto& p : shape) b.shape.push_back(v2(p));
+              const py::object& shape, const std::optional<double>& length, const py::object& at) {
+  BodyDef b = body_geometry(name, nodes, shape, length, at);
+  b.mass = mass;
+  b.inertia = inertia;
+  b.com = to_com(com, com_point);
   s.add_body(std::move(b));
 }
 
@@ -201,21 +246,31 @@ void bind_system_class(py::module_& m) {
           py::arg("name"), py::arg("position"),
           "Add a node of the ground (fixed) at position (x, y) (m); joints name it "
           "'ground.<name>'.")
-      .def("add_body", &add_body, py::arg("name"), py::arg("nodes"), py::arg("mass") = 0.0,
-           py::arg("inertia") = 0.0, py::arg("com") = py::none(), py::arg("com_point") = py::none(),
-           py::arg("shape") = std::vector<P2>{},
+      .def("add_body", &add_body, py::arg("name"), py::arg("nodes") = py::none(),
+           py::arg("mass") = 0.0, py::arg("inertia") = 0.0, py::arg("com") = py::none(),
+           py::arg("com_point") = py::none(), py::arg("shape") = py::none(),
+           py::arg("length") = py::none(), py::arg("at") = py::none(),
            "Add a rigid body.\n\n"
            "name: unique in the System; nodes: {name: (x, y)} (m, in the System's frame; or a "
            "list of (name, (x, y))), its points that joints and loads refer to as "
            "'body.node'; mass (kg, >= 0); inertia (kg m^2) about the centre of mass; com: the "
            "centre of mass, a node name, or (node_i, node_j, gamma[, rho]) (the fraction gamma "
            "along node_i -> node_j, rho across), default the first node; com_point: (x, y) "
-           "(m) instead; shape: the node coordinates in the body's own frame (one per node, "
-           "exact), which turns `nodes` into a sketch that build_model assembles (the sketch "
-           "picks the branch). Raises TypeError for malformed nodes.\n\n"
+           "(m) instead.\n\n"
+           "Lengths and a sketch instead of exact positions, as scene files write them "
+           "(mo2d/sketched_body.hpp): shape= the node coordinates in the body's own frame (one "
+           "per node, exact) turns `nodes` into a sketch; length=L (m) is a bar, its first node "
+           "at (0, 0) and its second at (L, 0) in its frame, `nodes` its two sketched "
+           "positions; shape={name: (x, y)} with at=((x, y), angle) (m, rad) places the shape "
+           "approximately, without nodes. build_model places such a body rigidly where the "
+           "joints close, nearest to the sketch (which picks the branch); points given on it "
+           "(com_point, a force's point) are in its frame. Raises TypeError for malformed or "
+           "conflicting arguments, mo2d.Error for a length that is not > 0.\n\n"
            "Example::\n\n"
            "    s.add_body('crank', nodes={'A': (0, 0), 'B': (0.1, 0)}, mass=0.5, "
-           "inertia=1e-3, com=('A', 'B', 0.5))")
+           "inertia=1e-3, com=('A', 'B', 0.5))\n"
+           "    s.add_body('coupler', length=0.35, nodes={'A': (0, 0.1), 'B': (0.3, 0.3)}, "
+           "mass=0.5)")
       .def(
           "add_revolute",
           [](System& s, const std::string& name, const std::string& a, const std::string& b,

@@ -3,6 +3,7 @@
 
 #include <algorithm>
 
+#include "mo2d/sketched_body.hpp"
 #include "model/suggest.hpp"
 
 namespace mo2d::scene_detail {
@@ -128,8 +129,9 @@ void read_shape(const Reader& r, const YAML::Node& value, BodyDef& b, const std:
   r.check_keys(at, {"origin", "angle"}, what + ".at");
   const Placement placement{r.vec2(r.required(at, "origin", what + ".at"), what + ".at.origin"),
                             r.number_or(at, "angle", 0.0, what + ".at")};
-  for (size_t k = 0; k < names.size(); ++k)
-    b.nodes.push_back({names[k], placement.apply(b.shape[k])});
+  std::vector<NodeDef> sketched;  // the sketch from the placement: mo2d/sketched_body.hpp
+  for (size_t k = 0; k < names.size(); ++k) sketched.push_back({names[k], b.shape[k]});
+  b = placed_body(b.name, std::move(sketched), placement);
 }
 
 // The geometry of a body: exact `nodes`, or `shape` / `length` with a sketch.
@@ -154,7 +156,7 @@ void read_geometry(const Reader& r, const YAML::Node& value, BodyDef& b, const s
                        "(0, 0), the second at (length, 0) in its frame)");
   const double l = r.number(length, what + ".length");
   if (!(l > 0)) r.fail(length, what + ".length: a length must be > 0 m");
-  b.shape = {{0, 0}, {l, 0}};
+  b = bar_body(b.name, l, b.nodes[0], b.nodes[1]);  // mo2d/sketched_body.hpp
 }
 
 void read_bodies(Context& c, const YAML::Node& node) {
