@@ -3,7 +3,9 @@
 // and the same results (inverse efforts and reactions, a forward run) to 1e-12; the sketch picks
 // the branch (two mirrored sketches give the two mirrored assemblies); the moved distances of the
 // report against closed forms; lengths that cannot close a loop are refused; points given in a
-// shaped body's frame (centre of mass, force, spring) land where they belong.
+// shaped body's frame (centre of mass, force, spring) land where they belong. The public forms of
+// scene files' `length:` and `shape:` + `at:` (mo2d/sketched_body.hpp) give the exact results and
+// the scene loader's model.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -14,6 +16,7 @@
 #include "mo2d/mechanisms.hpp"
 #include "mo2d/mo2d.hpp"
 #include "mo2d/scene.hpp"
+#include "mo2d/sketched_body.hpp"
 
 using namespace mo2d;
 using namespace mo2d::test;
@@ -291,4 +294,93 @@ TEST(Sketch, WattSixbarByLengthsSceneGivesTheExactResults) {
   EXPECT_TRUE(a.sketch.warnings.empty());
   InverseOptions o = inverse_options(exact);
   expect_same_results(a, b, exact.motion, o, "crank.w");
+}
+
+namespace {
+
+// fourbar_by_lengths written with the public forms of scene files' `length:` (bar_body) and
+// `shape:` + `at:` (placed_body), mo2d/sketched_body.hpp.
+System fourbar_by_bar_and_placed_body(Vec2 b_sketch, double rocker_angle) {
+  const double a = 0.1, b = 0.35, c = 0.3, d = 0.4;
+  System s("fourbar");
+  s.add_ground_node("A0", {0, 0}).add_ground_node("B0", {d, 0});
+  s.add_body({.name = "crank",
+              .nodes = {{"O", {0, 0}}, {"A", {0, a}}},
+              .mass = 0.2,
+              .inertia = 0.2 * a * a / 12,
+              .com = CenterOfMass::between("O", "A", 0.5)});
+  BodyDef coupler = bar_body("coupler", b, {"A", {0.01, a - 0.02}}, {"B", b_sketch});
+  coupler.mass = 0.5;
+  coupler.inertia = 0.5 * b * b / 12;
+  coupler.com = CenterOfMass::between("A", "B", 0.5);
+  s.add_body(coupler);
+  BodyDef rocker = placed_body("rocker", {{"O", {0, 0}}, {"B", {c, 0}}}, {{d, 0}, rocker_angle});
+  rocker.mass = 0.4;
+  rocker.inertia = 0.4 * c * c / 12;
+  rocker.com = CenterOfMass::between("O", "B", 0.5);
+  s.add_body(rocker);
+  s.add_revolute(
+      {.name = "crank_pivot", .node_a = "ground.A0", .node_b = "crank.O", .actuated = true});
+  s.add_revolute({.name = "crank_pin", .node_a = "crank.A", .node_b = "coupler.A"});
+  s.add_revolute({.name = "rocker_pin", .node_a = "coupler.B", .node_b = "rocker.B"});
+  s.add_revolute({.name = "rocker_pivot", .node_a = "ground.B0", .node_b = "rocker.O"});
+  s.add_coordinate({.name = "crank.angle", .rate = {{"crank.w", 1.0}}});
+  s.set_gravity({0, -9.81});
+  return s;
+}
+
+// The same four-bar as a scene file gives it (docs/scene-format.md, "Bodies given by their
+// shape").
+constexpr const char* kFourbarScene = R"(name: fourbar
+ground: {A0: [0, 0], B0: [0.4, 0]}
+bodies:
+  crank: {nodes: {O: [0, 0], A: [0, 0.1]}, mass: 0.2, inertia: 0.2 * 0.1^2 / 12,
+          com: {between: [O, A]}}
+  coupler: {length: 0.35, nodes: {A: [0.01, 0.08], B: [0.3, 0.3]}, mass: 0.5,
+            inertia: 0.5 * 0.35^2 / 12, com: {between: [A, B]}}
+  rocker: {shape: {O: [0, 0], B: [0.3, 0]}, at: {origin: [0.4, 0], angle: 1.8}, mass: 0.4,
+           inertia: 0.4 * 0.3^2 / 12, com: {between: [O, B]}}
+joints:
+  crank_pivot: {type: revolute, node_a: ground.A0, node_b: crank.O, actuated: true}
+  crank_pin: {type: revolute, node_a: crank.A, node_b: coupler.A}
+  rocker_pin: {type: revolute, node_a: coupler.B, node_b: rocker.B}
+  rocker_pivot: {type: revolute, node_a: ground.B0, node_b: rocker.O}
+coordinates: {crank.angle: {rate: {crank.w: 1}}}
+loads: {gravity: [0, -9.81]}
+motion: {crank.angle: pi / 2 + 2 * pi * t}
+)";
+
+}  // namespace
+
+TEST(Sketch, BarAndPlacedBodyGiveTheExactResults) {
+  const mechanisms::Example exact = mechanisms::fourbar();
+  const Model a = build_model(fourbar_by_bar_and_placed_body({0.3, 0.3}, 1.8));
+  const Model b = build_model(exact.system);
+  EXPECT_EQ(a.sketch.nodes.size(), 4u);
+  EXPECT_TRUE(a.sketch.warnings.empty());
+  expect_same_results(a, b, exact.motion, exact.run, "crank.w");
+  // the sketch picks the branch: B and the rocker sketched below the line A-B0, elbow down
+  const Model down = build_model(fourbar_by_bar_and_placed_body({0.25, -0.2}, -1.8));
+  EXPECT_LT(node_at(down, "coupler.B").y(), 0);
+  EXPECT_NEAR((node_at(down, "coupler.B") - node_at(down, "crank.A")).norm(), 0.35, kSame);
+}
+
+TEST(Sketch, BarAndPlacedBodyAreTheSceneLoaders) {
+  const Model from_scene = build_scene_model(parse_scene(kFourbarScene, "fourbar.yaml"));
+  const Model from_cpp = build_model(fourbar_by_bar_and_placed_body({0.3, 0.3}, 1.8));
+  EXPECT_EQ(from_scene.coordinate_labels, from_cpp.coordinate_labels);
+  EXPECT_LE(max_abs_diff(from_scene.q0, from_cpp.q0), kSame);
+}
+
+TEST(Sketch, BarAndPlacedBodyErrors) {
+  const NodeDef na{"A", {0, 0}}, nb{"B", {1, 0}};
+  for (double length : {0.0, -1.0, kNaN, kInf})
+    EXPECT_TRUE(ThrowsError([&] { bar_body("bar", length, na, nb); },
+                            {"body 'bar': a bar's length must be finite and > 0 m"}));
+  EXPECT_TRUE(ThrowsError([] { placed_body("plate", {}, {}); },
+                          {"body 'plate': a shape needs at least one node"}));
+  const BodyDef p =
+      placed_body("plate", {{"O", {0, 0}}, {"P", {1, 0}}}, {{2, 3}, std::numbers::pi / 2});
+  EXPECT_NEAR((p.nodes[1].position - Vec2(2, 4)).norm(), 0, 1e-15);  // rotated, then shifted
+  EXPECT_EQ(p.shape[1], Vec2(1, 0));
 }
