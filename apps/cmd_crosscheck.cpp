@@ -105,9 +105,11 @@ int forward_check(const CrosscheckCliOptions& o) {
   std::printf("  body angle error:     max %.3e rad (tolerance %.3g), final %.3e rad: %s\n",
               r.max_angle_error, o.angle_tolerance, r.final_angle_error,
               agree ? "AGREE" : "DISAGREE");
-  if (!r.branch_switch.empty())
-    std::printf("  %s%s\n",
-                agree ? "note: " : "DISAGREE caused by Box2D: ", r.branch_switch.c_str());
+  if (agree && !r.branch_switch.empty()) std::printf("  note: %s\n", r.branch_switch.c_str());
+  if (!agree) {
+    const std::string cause = box2d_cause(r, o.position_tolerance, o.angle_tolerance);
+    if (!cause.empty()) std::printf("  DISAGREE caused by Box2D: %s\n", cause.c_str());
+  }
   std::string csv = "t,position_error,angle_error\n";  // the worst body at each instant
   for (Eigen::Index k = 0; k < r.time.size(); ++k)
     csv += shortest(r.time[k]) + "," + shortest(r.position_error[k]) + "," +

@@ -8,6 +8,7 @@
 #include "box2d_world.hpp"
 #include "crosscheck_budget.hpp"
 #include "mo2d/crosscheck.hpp"
+#include "mo2d/dynamics.hpp"
 #include "mo2d/error.hpp"
 
 namespace mo2d {
@@ -104,15 +105,15 @@ ForwardCrosscheck crosscheck_forward(const Model& reference_in, const Model& mod
     if (!check.refine_step || halvings >= 8)
       throw Error(
           what + ": the step " + num(h) + " s is too coarse for this motion: " + fastest.what +
-              " moves " + num(fastest.per_step) + " in a step at t = " + num(fastest.t) +
+              " turns " + num(fastest.per_step) + " rad in a step at t = " + num(fastest.t) +
               " s, more than the " + num(check.max_motion_per_step) +
               " the tolerances hold for (docs/crosscheck.md): use a step <= " + num(wanted) + " s",
           model.name, fastest.t);
     const double coarse = h;
     while (h > wanted) h /= 2;
     r.notes.push_back("Box2D step refined from " + num(coarse) + " to " + num(h) +
-                      " s: " + fastest.what + " moved " + num(fastest.per_step) +
-                      " per step at t = " + num(fastest.t) + " s");
+                      " s: " + fastest.what + " turned " + num(fastest.per_step) +
+                      " rad per step at t = " + num(fastest.t) + " s");
   }
   r.step = h;
   detail::RunBudget budget(box2d_budget(what, model.name, initial.t, t1, check));
@@ -121,6 +122,9 @@ ForwardCrosscheck crosscheck_forward(const Model& reference_in, const Model& mod
   r.time = ref.time;
   r.position_error = Eigen::VectorXd::Zero(samples);
   r.angle_error = Eigen::VectorXd::Zero(samples);
+  r.energy_difference = Eigen::VectorXd::Zero(samples);
+  r.mo2d_energy_error = energy_balance_error(ref);
+  r.kinetic_peak = ref.kinetic.size() ? ref.kinetic.maxCoeff() : 0.0;
   for (int s = 0; s < samples; ++s) {
     if (s > 0)
       for (int n = 0; n < stride; ++n) {
@@ -141,14 +145,42 @@ ForwardCrosscheck crosscheck_forward(const Model& reference_in, const Model& mod
       }
     }
     branch.sample(model, w, q0, ref.time[s]);
+    read_box2d_state(model, w, 0.0);  // h = 0: no coordinate integrated twice
+    r.energy_difference[s] = kinetic_energy(model, w.q1) + potential_energy(model, w.q0) -
+                             ref.kinetic[s] - ref.potential[s];
   }
-  r.branch_switch = branch.report();
+  r.branch_switch = branch.report(model);
   r.max_position_error = r.position_error.maxCoeff();
   r.max_angle_error = r.angle_error.maxCoeff();
   r.final_position_error = r.position_error[samples - 1];
   r.final_angle_error = r.angle_error[samples - 1];
   r.relative_position_error = r.max_position_error / model.scale;
   return r;
+}
+
+std::string box2d_cause(const ForwardCrosscheck& r, double position_tolerance,
+                        double angle_tolerance) {
+  if (!r.branch_switch.empty()) return r.branch_switch;
+  const double scale = r.position_error.size() && r.relative_position_error > 0
+                           ? r.max_position_error / r.relative_position_error
+                           : 1.0;
+  for (Eigen::Index s = 0; s < r.time.size(); ++s) {
+    if (r.position_error[s] <= position_tolerance * scale && r.angle_error[s] <= angle_tolerance)
+      continue;
+    const double dE = std::fabs(r.energy_difference[s]);
+    if (!(dE > 10 * r.mo2d_energy_error && dE > 1e-4 * r.kinetic_peak)) return "";
+    char b[640];
+    std::snprintf(b, sizeof b,
+                  "at t = %.4g s, where the error first exceeds the tolerance, Box2D's "
+                  "mechanical energy (mo2d's energy functions of Box2D's state) differs from "
+                  "mo2d's by %.3g J (%.2g of the kinetic energy peak, %.3g J), while mo2d's "
+                  "energy balance holds to %.3g J: Box2D's first-order float32 step has drifted, "
+                  "and the motion amplifies the drift (it grows with the step: try --step)",
+                  r.time[s], r.energy_difference[s], dE / r.kinetic_peak, r.kinetic_peak,
+                  r.mo2d_energy_error);
+    return b;
+  }
+  return "";
 }
 
 }  // namespace mo2d

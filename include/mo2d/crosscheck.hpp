@@ -160,7 +160,20 @@ struct ForwardCrosscheck {
   // disagreement then is Box2D's (its first-order step crossed a singular position).
   std::string branch_switch{};
   std::vector<std::string> notes{};  // substitutions made (zero_inertia_fraction)
+  // Evidence of Box2D's own drift: per instant, Box2D's mechanical energy (kinetic_energy and
+  // potential_energy, mo2d's functions, of Box2D's state) minus mo2d's (J); and mo2d's own
+  // energy-balance error over the run (energy_balance_error, J) and its largest kinetic energy.
+  Eigen::VectorXd energy_difference{};
+  double mo2d_energy_error = 0, kinetic_peak = 0;
 };
+// Why a forward cross-check disagrees, when Box2D is the cause: its branch switch
+// (ForwardCrosscheck::branch_switch), or, at the first instant an error exceeds its tolerance
+// (position relative to the size, angle in rad), a mechanical energy that differs from mo2d's by
+// more than 10x mo2d's own energy-balance error and 1e-4 of the kinetic energy peak (Box2D's
+// first-order float32 step drifts; a motion that is sensitive to its energy, like one passing
+// near an unstable position, amplifies the drift). "" when neither holds.
+std::string box2d_cause(const ForwardCrosscheck& r, double position_tolerance,
+                        double angle_tolerance);
 // Forward cross-check of `model` from `initial` up to t1 (s), compared at `samples` instants (see
 // ForwardCrosscheck).
 // `efforts`: one law per Model::inputs entry (ForwardOptions::efforts: of time, or of the state,
