@@ -174,8 +174,9 @@ std::string box2d_cause(const ForwardCrosscheck& r, double position_tolerance,
                   "at t = %.4g s, where the error first exceeds the tolerance, Box2D's "
                   "mechanical energy (mo2d's energy functions of Box2D's state) differs from "
                   "mo2d's by %.3g J (%.2g of the kinetic energy peak, %.3g J), while mo2d's "
-                  "energy balance holds to %.3g J: Box2D's first-order float32 step has drifted, "
-                  "and the motion amplifies the drift (it grows with the step: try --step)",
+                  "energy balance holds to %.3g J: Box2D's first-order float32 step has drifted "
+                  "(a smaller --step shrinks the drift in proportion if so), and the motion "
+                  "amplifies it",
                   r.time[s], r.energy_difference[s], dE / r.kinetic_peak, r.kinetic_peak,
                   r.mo2d_energy_error);
     return b;

@@ -11,10 +11,16 @@
 // an explicit constraint naming its two bodies):
 //   revolute -> b2RevoluteJoint; prismatic -> b2PrismaticJoint (b2WheelJoint when the rotation is
 //   not locked); pin-in-slot -> b2WheelJoint with zero stiffness; actuated joints -> motors;
-//   gravity, point forces and torques -> b2World gravity, ApplyForce, ApplyTorque.
-//   Extra coordinates only observe the motion and are accepted. User constraints, springs, a
-//   massless body, a rotating body without centroidal inertia and a driven slide of a
-//   pin-in-slot are refused with an Error naming the element.
+//   gear pairs and racks -> b2GearJoint; linear springs (k > 0) -> b2DistanceJoint with their
+//   stiffness and damping; gravity -> b2World gravity; every other load (spring laws, dampers,
+//   torsional springs, forces and torques of time or of the state, efforts, controllers, joint
+//   friction not carried by a motor) -> forces and torques each step, computed by mo2d's load
+//   functions on Box2D's own state (docs/crosscheck.md, "Shared code"); joint friction in a free
+//   joint -> its motor at speed 0 with the friction as its limit.
+//   Extra coordinates only observe the motion and are accepted. User constraints, chains, a
+//   massless body and a driven slide of a pin-in-slot are refused with an Error naming the
+//   element; a rotating body without centroidal inertia gets zero_inertia_fraction in both
+//   engines (0: refused).
 #include <Eigen/Core>
 #include <iosfwd>
 #include <span>

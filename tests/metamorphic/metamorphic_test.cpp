@@ -11,7 +11,7 @@
 //   round trip: the inverse efforts fed to forward dynamics reproduce the motion;
 //   forward energy: kinetic + potential + dissipated - input, load and constraint work constant
 //     (all loads, every mechanism), and the forward energies equal the independent ones;
-//   Box2D: the cross-check agrees (mechanisms without springs).
+//   Box2D: the cross-check agrees (springs and loads translated, issue 32).
 //
 // Count and seed: MO2D_META_COUNT (default 300, 40 in a sanitizer build), MO2D_META_SEED
 // (default 1; mechanism k has seed SEED + k). A failure prints the seed: reproduce it alone with
@@ -655,7 +655,8 @@ void check_mechanism(const Mechanism& mech, Table& table) {
     });
   }
 
-  // Box2D: mechanisms it can translate (no springs), with the library's default start (settling
+  // Box2D: every mechanism (springs as distance joints or forces, torsional springs, loads: issue
+  // 32; crosscheck/box2d_loads.cpp), with the library's default start (settling
   // on the motion before t0) and feedback, the step scaled with the mechanism's time. Compared:
   //  - mass ratios (largest body over the smallest) <= 10, as Box2D's manual asks (sequential
   //    impulses lose accuracy beyond). Measured with settling: on seeds 1..300 every settled
@@ -675,16 +676,13 @@ void check_mechanism(const Mechanism& mech, Table& table) {
     mmin = std::min(mmin, b.mass), mmax = std::max(mmax, b.mass);
   const double ratio_limit = env_double("MO2D_META_BOX2D_RATIO", kBox2dMassRatio);
   const std::string box2d = "Box2D cross-check";
-  if (mech.has_springs()) {
-    table.skip(box2d, 1.0, "springs (Box2D has none)");
-    return;
-  }
   if (mmax > ratio_limit * mmin) {
     table.skip(box2d, 1.0, "mass ratio > limit");
     return;
   }
   CrosscheckOptions c;  // the library's defaults, but the step
   c.step = mech.time / 640;
+  c.velocity_iterations = static_cast<int>(env_double("MO2D_META_BOX2D_VELOCITY_ITERATIONS", 50));
   CrosscheckReport r;
   try {
     r = crosscheck_inverse(sys, motion, {.t0 = 0, .t1 = mech.t1}, c);
