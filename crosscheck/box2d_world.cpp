@@ -89,6 +89,57 @@ void add_revolute_joint(const Model& m, Box2DWorld& w, const Constraint& c, bool
   j.joint = w.world->CreateJoint(&def);
 }
 
+// A prismatic joint or pin-in-slot into j: b2PrismaticJoint when mo2d locks the rotation, else a
+// b2WheelJoint (a pin in a slot, no suspension spring).
+void add_slider_joint(const Model& m, Box2DWorld& w, const Constraint& c, bool motors,
+                      const CrosscheckOptions& options, JointMap& j) {
+  const bool slot = c.kind() == ConstraintKind::slot;
+  const Constraint::Slider& s = *c.slider();
+  const auto* prismatic = std::get_if<Constraint::Prismatic>(&c.def);
+  const bool locked = !slot && (prismatic->lock_position || prismatic->lock_velocity ||
+                                (!rotates(w, s.body1) && !rotates(w, s.body2)));
+  j.body1 = s.body1;
+  j.body2 = s.body2;
+  b2Body* A = body_of(w, s.body1);
+  b2Body* B = body_of(w, s.body2);
+  const bool drives_slide = input_of(m, c.name, ".force") != nullptr;
+  const bool drives_rotation = input_of(m, c.name, ".torque") != nullptr;
+  if (locked) {
+    b2PrismaticJointDef def;
+    def.bodyA = A;
+    def.bodyB = B;
+    def.localAnchorA = local_anchor(m, w, s.i);
+    def.localAnchorB = local_anchor(m, w, s.s);
+    def.localAxisA = local_axis(m, s);
+    def.referenceAngle = B->GetAngle() - A->GetAngle();
+    j.kind = JointKind::prismatic;
+    j.motor = motors && drives_slide;
+    j.linear_motor = true;
+    def.enableMotor = j.motor;
+    def.maxMotorForce = static_cast<float>(options.max_motor_force);
+    j.joint = w.world->CreateJoint(&def);
+  } else {
+    if (drives_slide && motors)
+      refuse(std::string(slot ? "pin-in-slot" : "prismatic") + " joint '" + c.name +
+                 "': a driven slide with a free rotation (Box2D's wheel joint has only a "
+                 "rotary motor)",
+             c.name);
+    b2WheelJointDef def;
+    def.bodyA = A;
+    def.bodyB = B;
+    def.localAnchorA = local_anchor(m, w, s.i);
+    def.localAnchorB = local_anchor(m, w, s.s);
+    def.localAxisA = local_axis(m, s);
+    def.stiffness = 0;  // a pin in a slot: no suspension spring
+    def.damping = 0;
+    j.kind = JointKind::wheel;
+    j.motor = motors && drives_rotation;
+    def.enableMotor = j.motor;
+    def.maxMotorTorque = static_cast<float>(options.max_motor_torque);
+    j.joint = w.world->CreateJoint(&def);
+  }
+}
+
 // A spring reduced to a constraint (reduce: constraint) whose row is constraint ci: a rigid
 // b2DistanceJoint (min = max = rest length). False if ci is not such a row.
 bool add_rigid_spring(const Model& m, Box2DWorld& w, int ci) {
@@ -230,54 +281,9 @@ Box2DWorld build_box2d_world(const Model& m, const Eigen::VectorXd& q0, const Ei
                            on_proxy[ci] != 0, options, j);
         break;
       case ConstraintKind::prismatic:
-      case ConstraintKind::slot: {
-        const bool slot = c.kind() == ConstraintKind::slot;
-        const Constraint::Slider& s = *c.slider();
-        const auto* prismatic = std::get_if<Constraint::Prismatic>(&c.def);
-        const bool locked = !slot && (prismatic->lock_position || prismatic->lock_velocity ||
-                                      (!rotates(w, s.body1) && !rotates(w, s.body2)));
-        j.body1 = s.body1;
-        j.body2 = s.body2;
-        b2Body* A = body_of(w, s.body1);
-        b2Body* B = body_of(w, s.body2);
-        const bool drives_slide = input_of(m, c.name, ".force") != nullptr;
-        const bool drives_rotation = input_of(m, c.name, ".torque") != nullptr;
-        if (locked) {
-          b2PrismaticJointDef def;
-          def.bodyA = A;
-          def.bodyB = B;
-          def.localAnchorA = local_anchor(m, w, s.i);
-          def.localAnchorB = local_anchor(m, w, s.s);
-          def.localAxisA = local_axis(m, s);
-          def.referenceAngle = B->GetAngle() - A->GetAngle();
-          j.kind = JointKind::prismatic;
-          j.motor = motors && drives_slide;
-          j.linear_motor = true;
-          def.enableMotor = j.motor;
-          def.maxMotorForce = static_cast<float>(options.max_motor_force);
-          j.joint = w.world->CreateJoint(&def);
-        } else {
-          if (drives_slide && motors)
-            refuse(std::string(slot ? "pin-in-slot" : "prismatic") + " joint '" + c.name +
-                       "': a driven slide with a free rotation (Box2D's wheel joint has only a "
-                       "rotary motor)",
-                   c.name);
-          b2WheelJointDef def;
-          def.bodyA = A;
-          def.bodyB = B;
-          def.localAnchorA = local_anchor(m, w, s.i);
-          def.localAnchorB = local_anchor(m, w, s.s);
-          def.localAxisA = local_axis(m, s);
-          def.stiffness = 0;  // a pin in a slot: no suspension spring
-          def.damping = 0;
-          j.kind = JointKind::wheel;
-          j.motor = motors && drives_rotation;
-          def.enableMotor = j.motor;
-          def.maxMotorTorque = static_cast<float>(options.max_motor_torque);
-          j.joint = w.world->CreateJoint(&def);
-        }
+      case ConstraintKind::slot:
+        add_slider_joint(m, w, c, motors, options, j);
         break;
-      }
     }
     for (size_t r = 0; r < m.reactions.size(); ++r)
       if (m.reactions[r].label == c.name + ".Fx") j.reaction = static_cast<int>(r);
