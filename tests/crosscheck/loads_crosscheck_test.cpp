@@ -17,7 +17,7 @@ using namespace mo2d;
 
 namespace {
 
-std::string mechanism(const std::string& name) {
+std::string shipped_scene(const std::string& name) {
   return std::string(MO2D_MECHANISMS_DIR) + "/" + name + ".yaml";
 }
 
@@ -55,7 +55,7 @@ ForwardCrosscheck forward_with(const Scene& scene, double seconds, Plant plant,
 template <class Plant>
 ForwardCrosscheck forward_with(const std::string& scene_name, double seconds, Plant plant,
                                const CrosscheckOptions& o = {}) {
-  return forward_with(load_scene(mechanism(scene_name)), seconds, plant, o);
+  return forward_with(load_scene(shipped_scene(scene_name)), seconds, plant, o);
 }
 
 // A bar swinging on a hinge with a force at its tip that depends on the tip's velocity (a named
@@ -89,7 +89,7 @@ run:
 template <class Plant>
 CrosscheckReport inverse_with(const std::string& scene_name, double seconds, Plant plant,
                               const CrosscheckOptions& o = {}) {
-  const Scene scene = load_scene(mechanism(scene_name));
+  const Scene scene = load_scene(shipped_scene(scene_name));
   Model reference = build_scene_model(scene);
   plant(reference);
   InverseOptions run = inverse_options(scene);

@@ -27,14 +27,14 @@ const char* const kAllowedRefusals[] = {"user position constraint",
                                         "quasi-steady state",
                                         "reduced to a constraint is not translated"};
 
-struct Outcome {
+struct SceneOutcome {
   bool compared = false, agree = false;
   std::string detail;
 };
 
-Outcome crosscheck_scene(const std::string& path, double seconds) {
+SceneOutcome crosscheck_scene(const std::string& path, double seconds) {
   const Scene scene = load_scene(path);
-  Outcome out;
+  SceneOutcome out;
   CrosscheckOptions check;
   check.refine_step = true;  // as mo2d crosscheck without --step
   try {
@@ -76,7 +76,7 @@ TEST(CrosscheckShipped, EverySceneIsComparedOrRefusedForAnAllowedReason) {
   ASSERT_GE(paths.size(), 23u);
   int compared = 0;
   for (const std::string& path : paths) {
-    const Outcome o = crosscheck_scene(path, 0.3);
+    const SceneOutcome o = crosscheck_scene(path, 0.3);
     const std::string name = std::filesystem::path(path).stem().string();
     std::cout << "  " << name << ": " << (o.compared ? (o.agree ? "AGREE" : "DISAGREE") : "refused")
               << " (" << o.detail << ")\n";
