@@ -44,8 +44,7 @@ ForwardCrosscheck forward_with(const Scene& scene, double seconds, Plant plant,
   plant(reference);
   const State s0 = initial_state(scene, model);
   const EffortLaws efforts = forward_options(scene, build_scene_model(scene)).efforts;
-  const ForwardCrosscheck r =
-      crosscheck_forward(reference, model, s0, s0.t + seconds, o, 21, efforts);
+  ForwardCrosscheck r = crosscheck_forward(reference, model, s0, s0.t + seconds, o, 21, efforts);
   if (std::getenv("MO2D_PRINT"))
     std::cout << scene_name << ": position " << r.relative_position_error << " of the size, angle "
               << r.max_angle_error << " rad\n";
@@ -94,7 +93,7 @@ CrosscheckReport inverse_with(const std::string& scene_name, double seconds, Pla
   plant(reference);
   InverseOptions run = inverse_options(scene);
   run.t1 = run.t0 + seconds;
-  const CrosscheckReport r = crosscheck_inverse(
+  CrosscheckReport r = crosscheck_inverse(
       reference, build_scene_model(scene, {.reduction = Reduction::none}), scene.motion, run, o);
   if (std::getenv("MO2D_PRINT")) std::cout << loads_table(r);
   return r;
