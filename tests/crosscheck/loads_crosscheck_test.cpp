@@ -58,7 +58,8 @@ ForwardCrosscheck forward_with(const std::string& scene_name, double seconds, Pl
 }
 
 // A bar swinging on a hinge with a force at its tip that depends on the tip's velocity (a named
-// point) and on time.
+// point) and on time, and a pure damper (k = 0: a force pair from spring_value on Box2D's state;
+// Box2D's distance joint applies no damping without stiffness) from the ground to the tip.
 const char* kDraggedBar = R"yaml(
 name: dragged_bar
 parameters: {L: 0.8, m: 1.5, c: 3.0}
@@ -77,6 +78,9 @@ loads:
   gravity: [0, -9.81]
   forces:
     drag: {body: bar, point: [L, 0], fx: "-c * tip.vx", fy: "-c * tip.vy + 4 * sin(3 * t)"}
+  springs:
+    damper: {body_a: ground, point_a: [0.3, -0.6], body_b: bar, point_b: [L, 0], rest_length: 0.5,
+             damping: 6}
 initial:
   velocities: {bar.w: 0}
 run:
@@ -219,4 +223,15 @@ TEST(CrosscheckLoads, RackRatioSignFlippedIsCaught) {
       if (auto* g = std::get_if<Constraint::Gear>(&c.def)) g->ratio = -g->ratio;
   });
   EXPECT_GT(r.relative_position_error, 0.01);  // 0.10 (the rack runs the other way)
+}
+
+TEST(CrosscheckLoads, PureDamperOnTheWrongNodeIsCaught) {
+  // mo2d attaches the damper at the hinge end of the bar (node O) instead of its tip
+  const ForwardCrosscheck r = forward_with(parse_scene(kDraggedBar), 1.0, [](Model& m) {
+    BodyPoint& b = m.springs.at(0).b;
+    b.ci = 0;
+    b.cj = -1;
+    b.gamma = b.rho = 0;
+  });
+  EXPECT_GT(r.relative_position_error, 4e-3);
 }
