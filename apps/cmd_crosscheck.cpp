@@ -5,11 +5,12 @@
 // efforts, DIR/NAME_crosscheck.png. Exit status 3 when the engines disagree (the tolerances are
 // set so that a disagreement means a modelling error, docs/crosscheck.md); a step too coarse for
 // the motion or too few compared steps is an error (status 1), never a verdict.
-// With --forward: from the scene's consistent initial state, with no efforts (driven joints
-// free), mo2d (CVODE BDF, rtol 1e-10) and Box2D integrate over the run; centres of mass and body
-// angles are compared at the run's samples; writes DIR/NAME_crosscheck_forward.csv (t and the
-// worst body's errors); exit status 3 when an error exceeds --position-tolerance (relative to
-// the mechanism's size) or --angle-tolerance.
+// A scene whose run solves forward (run: {solve: forward}), or --forward: from the scene's
+// consistent initial state, under the scene's efforts and controllers, mo2d (CVODE BDF, rtol 1e-10)
+// and Box2D integrate over the run; centres of mass and body angles are compared at the run's
+// samples; writes DIR/NAME_crosscheck_forward.csv (t and the worst body's errors); exit status 3
+// when an error exceeds --position-tolerance (relative to the mechanism's size) or
+// --angle-tolerance.
 #include <cstdio>
 #include <iostream>
 
@@ -27,11 +28,12 @@ namespace {
 struct CrosscheckCliOptions {
   SceneOptions scene{};
   double step = 1.0 / 2000;
-  double inertia_fraction = 0;
+  double inertia_fraction = 1.0 / 12;
   double feedback_time = -1;                 // < 0: the library's default
   std::vector<std::string> reference_set{};  // name=value, mo2d's model only
   bool strict = false;
   bool forward = false;
+  bool step_set = false;             // --step given: the forward check does not refine it
   double position_tolerance = 1e-2;  // --forward: max |com error| / Model::scale
   double angle_tolerance = 2e-2;     // --forward: rad
 };
@@ -69,6 +71,7 @@ CrosscheckOptions check_options(const CrosscheckCliOptions& o, const Scene& scen
   check.max_seconds = scene.run.max_seconds;
   check.max_memory = scene.run.max_memory;
   check.zero_inertia_fraction = o.inertia_fraction;
+  check.refine_step = !o.step_set;
   if (o.feedback_time >= 0) check.feedback_time = o.feedback_time;
   return check;
 }
@@ -80,15 +83,18 @@ int forward_check(const CrosscheckCliOptions& o) {
   const Model model = build_scene_model(scene, {.reduction = Reduction::none});
   const State initial = initial_state(scene, model);
   const int samples = scene.run.samples > 0 ? scene.run.samples : 101;
+  // the scene's efforts and controllers, in both engines (Box2D evaluates them on its state)
+  const EffortLaws efforts = forward_options(scene, build_model_of(scene)).efforts;
   const ForwardCrosscheck r = mo2d::crosscheck_forward(
-      model, initial, scene.run.t0 + scene.run.duration, check_options(o, scene), samples);
+      model, initial, scene.run.t0 + scene.run.duration, check_options(o, scene), samples, efforts);
   const bool agree =
       r.relative_position_error <= o.position_tolerance && r.max_angle_error <= o.angle_tolerance;
   std::printf("mo2d forward cross-check against Box2D: %s\n", r.mechanism.c_str());
   if (!scene.efforts.empty() || !scene.controllers.empty())
     std::printf(
-        "  note: the scene's efforts and controllers are not applied (the driven joints "
-        "are free in both engines)\n");
+        "  note: the scene's efforts and controllers act in both engines (Box2D's evaluated on "
+        "its own state)\n");
+  for (const std::string& n : r.notes) std::printf("  note: %s\n", n.c_str());
   std::printf("  step %.6g s, %d steps over [%g, %g] s, %d compared instants\n", r.step, r.steps,
               initial.t, initial.t + r.steps * r.step, static_cast<int>(r.time.size()));
   std::printf(
@@ -99,6 +105,11 @@ int forward_check(const CrosscheckCliOptions& o) {
   std::printf("  body angle error:     max %.3e rad (tolerance %.3g), final %.3e rad: %s\n",
               r.max_angle_error, o.angle_tolerance, r.final_angle_error,
               agree ? "AGREE" : "DISAGREE");
+  if (agree && !r.branch_switch.empty()) std::printf("  note: %s\n", r.branch_switch.c_str());
+  if (!agree) {
+    const std::string cause = box2d_cause(r, o.position_tolerance, o.angle_tolerance);
+    if (!cause.empty()) std::printf("  DISAGREE caused by Box2D: %s\n", cause.c_str());
+  }
   std::string csv = "t,position_error,angle_error\n";  // the worst body at each instant
   for (Eigen::Index k = 0; k < r.time.size(); ++k)
     csv += shortest(r.time[k]) + "," + shortest(r.position_error[k]) + "," +
@@ -111,8 +122,9 @@ int forward_check(const CrosscheckCliOptions& o) {
 }
 
 int crosscheck(const CrosscheckCliOptions& o) {
-  if (o.forward) return forward_check(o);
   const Scene scene = load_scene_with_overrides(o.scene);
+  // the scene's run says which: forward (no motion, initial conditions) or inverse
+  if (o.forward || scene.run.solve == Solve::forward) return forward_check(o);
   const Model model = build_model_of(scene);  // checks the scene's labels
   if (static_cast<int>(scene.motion.size()) != model.dof)
     throw SceneError(Location{scene.file, 0, 0},
@@ -151,9 +163,11 @@ Command add_crosscheck_command(CLI::App& app) {
   CLI::App* sub = app.add_subcommand(
       "crosscheck", "Rebuild the scene in Box2D and compare motor efforts and joint reactions");
   add_scene_options(sub, o->scene, true, RunFlags::inverse);
-  sub->add_flag("--forward", o->forward,
-                "forward cross-check: the motion from the scene's initial state (no efforts) in "
-                "both engines, centres of mass and body angles compared");
+  sub->add_flag(
+      "--forward", o->forward,
+      "forward cross-check (the default for a scene with run: {solve: forward}): the motion "
+      "from the scene's initial state under its efforts and controllers in "
+      "both engines, centres of mass and body angles compared");
   sub->add_option("--position-tolerance", o->position_tolerance,
                   "--forward: largest centre-of-mass error, relative to the mechanism's size "
                   "(default 1e-2)")
@@ -161,11 +175,16 @@ Command add_crosscheck_command(CLI::App& app) {
   sub->add_option("--angle-tolerance", o->angle_tolerance,
                   "--forward: largest body angle error in rad (default 2e-2)")
       ->check(CLI::PositiveNumber);
-  sub->add_option("--step", o->step, "Box2D time step in s (default 1/2000)")
-      ->check(CLI::PositiveNumber);
-  sub->add_option("--point-mass-inertia", o->inertia_fraction,
-                  "give point masses on massless links I = f m L^2 in both engines (Box2D cannot "
-                  "turn a body without inertia); default 0: refuse them")
+  CLI::Option* step = sub->add_option("--step", o->step,
+                                      "Box2D time step in s (default 1/2000; a forward check "
+                                      "halves the default until no body turns more than 0.01 "
+                                      "rad per step)")
+                          ->check(CLI::PositiveNumber);
+  sub->add_option(
+         "--point-mass-inertia", o->inertia_fraction,
+         "give point masses on massless links I = f m L^2 in both engines (Box2D cannot "
+         "turn a body without inertia; the comparison does not depend on f); default 1/12, "
+         "0: refuse them")
       ->check(CLI::NonNegativeNumber);
   sub->add_option("--feedback-time", o->feedback_time,
                   "time constant of the motors' position feedback in s (0: none)")
@@ -176,7 +195,10 @@ Command add_crosscheck_command(CLI::App& app) {
       ->check(name_equals_value());
   sub->add_flag("--strict", o->strict,
                 "kept for old scripts: a disagreement always exits with status 3");
-  return {sub, [o] { return crosscheck(*o); }};
+  return {sub, [o, step] {
+            o->step_set = step->count() > 0;
+            return crosscheck(*o);
+          }};
 }
 
 }  // namespace mo2d::cli

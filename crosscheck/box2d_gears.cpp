@@ -83,6 +83,47 @@ std::vector<int> second_class(const std::string& carrier_name,
   return ones;
 }
 
+// A rack (q - r phi = constant: the slide coordinate q of a prismatic joint, phi the pinion's
+// angle relative to the carrier) as a b2GearJoint between the b2PrismaticJoint (coordinate:
+// the translation along the same axis i -> j, q + constant) and the carrier -> pinion
+// b2RevoluteJoint (phi + constant), ratio -r.
+void add_rack_joint(const Model& m, Box2DWorld& w, const Constraint& c) {
+  const auto& g = c.as<Constraint::Gear>();
+  const int pinion = gear_driver(m, g);
+  b2Joint* slide = nullptr;
+  b2Joint* axle = nullptr;
+  for (const JointMap& j : w.joints) {
+    const Constraint::Slider* s = m.constraints[j.constraint].slider();
+    if (s && s->q == g.coord) {
+      if (j.kind != JointKind::prismatic)
+        refuse_gear("rack '" + c.name + "': its slide '" + j.name +
+                        "' is a b2WheelJoint here (its rotation is free), which Box2D's gear "
+                        "joint cannot couple",
+                    c.name);
+      slide = j.joint;
+    }
+    if (j.kind == JointKind::revolute && j.body1 == g.carrier && pinion >= 0 && j.body2 == pinion)
+      axle = j.joint;
+  }
+  if (!slide || !axle)
+    refuse_gear("rack '" + c.name +
+                    "': Box2D's gear joint needs the slide as a prismatic joint and a revolute "
+                    "joint from the carrier to the pinion",
+                c.name);
+  if (slide->GetBodyA() == axle->GetBodyA() && slide->GetBodyA()->GetType() != b2_staticBody)
+    refuse_gear("rack '" + c.name +
+                    "': the slide and the pinion's axle start on the same moving "
+                    "body (Box2D 2.4.1's gear joint loses that body's share)",
+                c.name);
+  b2GearJointDef def;
+  def.joint1 = slide;
+  def.joint2 = axle;
+  def.bodyA = slide->GetBodyB();
+  def.bodyB = axle->GetBodyB();
+  def.ratio = static_cast<float>(-g.ratio);
+  w.world->CreateJoint(&def);
+}
+
 }  // namespace
 
 int gear_driver(const Model& m, const Constraint::Gear& g) {
@@ -131,7 +172,10 @@ void add_carrier_proxy(Box2DWorld& w, int carrier) {
 
 void add_gear_joint(const Model& m, Box2DWorld& w, const Constraint& c) {
   const auto& g = c.as<Constraint::Gear>();
-  if (g.coord >= 0) refuse_gear("rack '" + c.name + "' has no Box2D equivalent mapped yet", c.name);
+  if (g.coord >= 0) {
+    add_rack_joint(m, w, c);
+    return;
+  }
   const int driver = gear_driver(m, g);
   b2Joint* j1 = nullptr;
   b2Joint* j2 = nullptr;

@@ -89,6 +89,75 @@ void add_revolute_joint(const Model& m, Box2DWorld& w, const Constraint& c, bool
   j.joint = w.world->CreateJoint(&def);
 }
 
+// A prismatic joint or pin-in-slot into j: b2PrismaticJoint when mo2d locks the rotation, else a
+// b2WheelJoint (a pin in a slot, no suspension spring).
+void add_slider_joint(const Model& m, Box2DWorld& w, const Constraint& c, bool motors,
+                      const CrosscheckOptions& options, JointMap& j) {
+  const bool slot = c.kind() == ConstraintKind::slot;
+  const Constraint::Slider& s = *c.slider();
+  const auto* prismatic = std::get_if<Constraint::Prismatic>(&c.def);
+  const bool locked = !slot && (prismatic->lock_position || prismatic->lock_velocity ||
+                                (!rotates(w, s.body1) && !rotates(w, s.body2)));
+  j.body1 = s.body1;
+  j.body2 = s.body2;
+  b2Body* A = body_of(w, s.body1);
+  b2Body* B = body_of(w, s.body2);
+  const bool drives_slide = input_of(m, c.name, ".force") != nullptr;
+  const bool drives_rotation = input_of(m, c.name, ".torque") != nullptr;
+  if (locked) {
+    b2PrismaticJointDef def;
+    def.bodyA = A;
+    def.bodyB = B;
+    def.localAnchorA = local_anchor(m, w, s.i);
+    def.localAnchorB = local_anchor(m, w, s.s);
+    def.localAxisA = local_axis(m, s);
+    def.referenceAngle = B->GetAngle() - A->GetAngle();
+    j.kind = JointKind::prismatic;
+    j.motor = motors && drives_slide;
+    j.linear_motor = true;
+    def.enableMotor = j.motor;
+    def.maxMotorForce = static_cast<float>(options.max_motor_force);
+    j.joint = w.world->CreateJoint(&def);
+  } else {
+    if (drives_slide && motors)
+      refuse(std::string(slot ? "pin-in-slot" : "prismatic") + " joint '" + c.name +
+                 "': a driven slide with a free rotation (Box2D's wheel joint has only a "
+                 "rotary motor)",
+             c.name);
+    b2WheelJointDef def;
+    def.bodyA = A;
+    def.bodyB = B;
+    def.localAnchorA = local_anchor(m, w, s.i);
+    def.localAnchorB = local_anchor(m, w, s.s);
+    def.localAxisA = local_axis(m, s);
+    def.stiffness = 0;  // a pin in a slot: no suspension spring
+    def.damping = 0;
+    j.kind = JointKind::wheel;
+    j.motor = motors && drives_rotation;
+    def.enableMotor = j.motor;
+    def.maxMotorTorque = static_cast<float>(options.max_motor_torque);
+    j.joint = w.world->CreateJoint(&def);
+  }
+}
+
+// A spring reduced to a constraint (reduce: constraint) whose row is constraint ci: a rigid
+// b2DistanceJoint (min = max = rest length). False if ci is not such a row.
+bool add_rigid_spring(const Model& m, Box2DWorld& w, int ci) {
+  for (const ReducedSpring& r : m.reduced_springs) {
+    if (r.constraint != ci || r.held_length) continue;
+    const SpringLoad& s = r.spring;
+    b2DistanceJointDef def;
+    def.bodyA = body_of(w, s.a.body);
+    def.bodyB = body_of(w, s.b.body);
+    def.localAnchorA = local_point(m, w, s.a);
+    def.localAnchorB = local_point(m, w, s.b);
+    def.length = def.minLength = def.maxLength = static_cast<float>(s.rest_length);
+    w.world->CreateJoint(&def);
+    return true;
+  }
+  return false;
+}
+
 }  // namespace
 
 double wrap_angle(double a) {
@@ -122,31 +191,22 @@ Box2DWorld build_box2d_world(const Model& m, const Eigen::VectorXd& q0, const Ei
   if (m.reduction != Reduction::none)
     refuse("the translated Model must be built with Reduction::none (every joint a constraint)",
            m.name);
-  for (const SpringLoad& s : m.springs) refuse("spring '" + s.name + "' is not translated", s.name);
   for (const ReducedSpring& s : m.reduced_springs)  // before its user position constraint
-    refuse("spring '" + s.spring.name +
-               (s.held_length ? "' reduced to its quasi-steady state (reduce: quasi_steady) is "
-                                "not translated (Box2D has no joint whose length follows its "
-                                "multiplier)"
-                              : "' reduced to a constraint is not translated (Box2D's distance "
-                                "joint with min = max = rest length would be its equivalent; "
-                                "not mapped yet)"),
-           s.spring.name);
-  for (const PointLoad& f : m.forces)
-    if (!f.fx.args.empty() || !f.fy.args.empty())
-      refuse("force '" + f.name + "' depends on the state (not translated)", f.name);
-  for (const TorqueLoad& tl : m.torques)
-    if (!tl.torque.args.empty())
-      refuse("torque '" + tl.name + "' depends on the state (not translated)", tl.name);
-  for (const TorsionalLoad& s : m.torsional_springs)
-    refuse("torsional spring '" + s.name + "' is not translated", s.name);
+    if (s.held_length)
+      refuse("spring '" + s.spring.name +
+                 "' reduced to its quasi-steady state (reduce: quasi_steady) is not translated "
+                 "(Box2D has no joint whose length follows its multiplier)",
+             s.spring.name);
   for (const ReducedTorsional& s : m.reduced_torsional)  // before its user position constraint
-    refuse("torsional spring '" + s.spring.name + "' reduced to a constraint is not translated",
+    refuse("torsional spring '" + s.spring.name +
+               "' reduced to a constraint is not translated (Box2D 2.4.1's revolute joint has no "
+               "angle lock to hold it)",
            s.spring.name);
   for (const ChainLoad& c : m.chains)
-    refuse("chain '" + c.name + "' is not translated (Box2D has no chain or belt drive)", c.name);
-  for (const FrictionLoad& f : m.frictions)
-    refuse("joint friction '" + f.name + "' is not translated", f.name);
+    refuse("chain '" + c.name +
+               "' is not translated (Box2D has no chain or belt drive: its spans wrap the "
+               "sprockets)",
+           c.name);
 
   Box2DWorld w;
   w.world = std::make_unique<b2World>(to_b2(m.gravity));
@@ -163,8 +223,8 @@ Box2DWorld build_box2d_world(const Model& m, const Eigen::VectorXd& q0, const Ei
     if (b.has_omega && !(b.inertia > 0))
       refuse("body '" + b.name +
                  "' rotates but has no centroidal inertia: Box2D cannot turn it (set "
-                 "CrosscheckOptions::zero_inertia_fraction to substitute a small inertia in both "
-                 "engines)",
+                 "CrosscheckOptions::zero_inertia_fraction > 0, mo2d crosscheck "
+                 "--point-mass-inertia, to substitute a small inertia in both engines)",
              b.name);
     BodyMap map;
     map.com_geometry = geometry_point(b, b.ci, b.cj, b.gamma, b.rho);
@@ -174,9 +234,8 @@ Box2DWorld build_box2d_world(const Model& m, const Eigen::VectorXd& q0, const Ei
       const Vec2 d = b.geometry[1] - b.geometry[0];
       map.alpha = std::atan2(d.y(), d.x());
     }
-    if (b.has_omega && !map.oriented)
-      refuse("body '" + b.name + "' has one node and a rotation: its angle is not observable",
-             b.name);
+    // one node and a rotation (a disc): Box2D turns it from angle 0; its angle is not observable
+    // in mo2d's coordinates, so the forward comparison skips it (its rate and loads act)
     w.bodies.push_back(map);
 
     b2BodyDef def;
@@ -208,6 +267,7 @@ Box2DWorld build_box2d_world(const Model& m, const Eigen::VectorXd& q0, const Ei
       case ConstraintKind::coordinate:  // an extra coordinate observes the motion only
         continue;
       case ConstraintKind::user_position:
+        if (add_rigid_spring(m, w, static_cast<int>(ci))) continue;
         refuse("user position constraint '" + c.name + "' has no Box2D equivalent", c.name);
         break;
       case ConstraintKind::user_velocity:
@@ -221,58 +281,21 @@ Box2DWorld build_box2d_world(const Model& m, const Eigen::VectorXd& q0, const Ei
                            on_proxy[ci] != 0, options, j);
         break;
       case ConstraintKind::prismatic:
-      case ConstraintKind::slot: {
-        const bool slot = c.kind() == ConstraintKind::slot;
-        const Constraint::Slider& s = *c.slider();
-        const auto* prismatic = std::get_if<Constraint::Prismatic>(&c.def);
-        const bool locked = !slot && (prismatic->lock_position || prismatic->lock_velocity ||
-                                      (!rotates(w, s.body1) && !rotates(w, s.body2)));
-        j.body1 = s.body1;
-        j.body2 = s.body2;
-        b2Body* A = body_of(w, s.body1);
-        b2Body* B = body_of(w, s.body2);
-        const bool drives_slide = input_of(m, c.name, ".force") != nullptr;
-        const bool drives_rotation = input_of(m, c.name, ".torque") != nullptr;
-        if (locked) {
-          b2PrismaticJointDef def;
-          def.bodyA = A;
-          def.bodyB = B;
-          def.localAnchorA = local_anchor(m, w, s.i);
-          def.localAnchorB = local_anchor(m, w, s.s);
-          def.localAxisA = local_axis(m, s);
-          def.referenceAngle = B->GetAngle() - A->GetAngle();
-          j.kind = JointKind::prismatic;
-          j.motor = motors && drives_slide;
-          j.linear_motor = true;
-          def.enableMotor = j.motor;
-          def.maxMotorForce = static_cast<float>(options.max_motor_force);
-          j.joint = w.world->CreateJoint(&def);
-        } else {
-          if (drives_slide && motors)
-            refuse(std::string(slot ? "pin-in-slot" : "prismatic") + " joint '" + c.name +
-                       "': a driven slide with a free rotation (Box2D's wheel joint has only a "
-                       "rotary motor)",
-                   c.name);
-          b2WheelJointDef def;
-          def.bodyA = A;
-          def.bodyB = B;
-          def.localAnchorA = local_anchor(m, w, s.i);
-          def.localAnchorB = local_anchor(m, w, s.s);
-          def.localAxisA = local_axis(m, s);
-          def.stiffness = 0;  // a pin in a slot: no suspension spring
-          def.damping = 0;
-          j.kind = JointKind::wheel;
-          j.motor = motors && drives_rotation;
-          def.enableMotor = j.motor;
-          def.maxMotorTorque = static_cast<float>(options.max_motor_torque);
-          j.joint = w.world->CreateJoint(&def);
-        }
+      case ConstraintKind::slot:
+        add_slider_joint(m, w, c, motors, options, j);
         break;
-      }
     }
+    for (size_t r = 0; r < m.reactions.size(); ++r)
+      if (m.reactions[r].label == c.name + ".Fx") j.reaction = static_cast<int>(r);
     w.joints.push_back(j);
   }
   for (int gi : gears) add_gear_joint(m, w, m.constraints[gi]);
+  add_spring_joints(m, w);
+  assign_friction_motors(m, w);
+  w.q0 = q0;
+  w.q1 = q1;
+  w.reactions = Eigen::VectorXd::Zero(m.n_reactions());
+  w.friction_values = Eigen::VectorXd::Zero(static_cast<Eigen::Index>(m.frictions.size()));
   return w;
 }
 
@@ -325,24 +348,6 @@ double motor_effort(const JointMap& j, double inv_dt) {
 Vec2 reaction_force(const JointMap& j, double inv_dt) {
   const b2Vec2 F = j.joint->GetReactionForce(static_cast<float>(inv_dt));  // on body B
   return Vec2(F.x, F.y);
-}
-
-// The loads are functions of time only (translate refuses laws that read the state).
-void apply_loads(const Model& m, Box2DWorld& w, double t) {
-  const Eigen::VectorXd q1 = Eigen::VectorXd::Zero(m.n1);  // not read by a law of time
-  for (const PointLoad& f : m.forces) {
-    const Vec2 F = point_force(m, f, m.q0, q1, t);
-    const double fx = F.x(), fy = F.y();
-    if (f.body < 0) continue;
-    const Body& b = m.bodies[f.body];
-    const Vec2 p = geometry_point(b, f.ci, f.cj, f.gamma, f.rho) - w.bodies[f.body].com_geometry;
-    b2Body* body = w.bodies[f.body].body;
-    body->ApplyForce(to_b2(Vec2(fx, fy)), body->GetWorldPoint(to_b2(p)), false);
-  }
-  for (const TorqueLoad& tl : m.torques)
-    if (tl.body >= 0 && tl.torque)
-      w.bodies[tl.body].body->ApplyTorque(static_cast<float>(torque_value(m, tl, m.q0, q1, t)),
-                                          false);
 }
 
 }  // namespace mo2d::crosscheck_detail

@@ -8,6 +8,7 @@
 // alpha_b = angle of node 1 seen from node 0 in the geometry.
 #include <box2d/box2d.h>
 
+#include <Eigen/Core>
 #include <memory>
 #include <string>
 #include <vector>
@@ -37,6 +38,10 @@ struct JointMap {
   int body1 = -1, body2 = -1;
   bool motor = false;         // driven (an input of the Model)
   bool linear_motor = false;  // motor drives the slider coordinate (prismatic) or the rotation
+  int reaction = -1;          // column of "name.Fx" in Model::reactions (-1: none)
+  // Model::frictions index whose Coulomb and viscous parts this joint's motor carries (Box2D's
+  // friction idiom: motor speed 0, limit = the friction's magnitude; -1: none)
+  int friction = -1;
 };
 
 struct Box2DWorld {
@@ -44,6 +49,17 @@ struct Box2DWorld {
   b2Body* ground = nullptr;
   std::vector<BodyMap> bodies{};  // one per Model body
   std::vector<JointMap> joints{};
+  // Per Model::springs: the b2DistanceJoint that is the spring (linear, bilateral, k > 0), or
+  // null when the spring's tension is applied as a force pair each step (box2d_loads.cpp).
+  std::vector<b2DistanceJoint*> spring_joints{};
+  // Per Model::inputs, forward: the effort laws applied each step (empty: no effort).
+  std::vector<CompiledLaw> efforts{};
+  // Frictions: tanh-regularized (forward, as mo2d integrates them) or sign (inverse).
+  bool regularized_friction = false;
+  // Box2D's own state in mo2d's variables (read_box2d_state), the joint reactions of Box2D's
+  // last step in Model::reactions order (0 before the first step), and scratch.
+  Eigen::VectorXd q0{}, q1{}, reactions{}, friction_values{};
+  double last_inv_dt = 0;
 };
 
 // Refuses (Error naming the element) what Box2D cannot represent. The Model must be built with
@@ -67,8 +83,21 @@ void set_motor_speed(const JointMap& j, double speed);
 double motor_effort(const JointMap& j, double inv_dt);
 Vec2 reaction_force(const JointMap& j, double inv_dt);
 
-// Point forces and torques of the Model at time t (Box2D clears them after each step).
-void apply_loads(const Model& m, Box2DWorld& w, double t);
+// Loads applied each Box2D step (box2d_loads.cpp): mo2d's load code (point_force, torque_value,
+// spring_value, torsional_value, friction_forces, law_value) evaluated on Box2D's own state read
+// back by read_box2d_state, applied with ApplyForce / ApplyTorque (Box2D clears them after each
+// step); the friction motors' limits set from Box2D's last reactions. h: the step about to run.
+void apply_loads(const Model& m, Box2DWorld& w, double t, double h);
+// Box2D's state as mo2d coordinates: w.q0, w.q1 (node positions and velocities from the bodies,
+// rotation rates, slider coordinates, extra coordinates unwrapped from their last value) and
+// w.reactions from the joints' reaction forces of the last step.
+void read_box2d_state(const Model& m, Box2DWorld& w, double h);
+// The Box2D local point (body frame) of a BodyPoint; ground: the world point.
+b2Vec2 local_point(const Model& m, const Box2DWorld& w, const BodyPoint& p);
+// Springs as distance joints (the linear bilateral ones with k > 0), after the bodies.
+void add_spring_joints(const Model& m, Box2DWorld& w);
+// Joint frictions carried by the motors of free revolute and prismatic joints.
+void assign_friction_motors(const Model& m, Box2DWorld& w);
 
 // Model with every rotating zero-inertia body given I = fraction m r^2; notes what it changed.
 Model with_inertia_floor(const Model& m, double fraction, std::vector<std::string>& notes);

@@ -16,6 +16,7 @@
 
 #include "box2d_world.hpp"
 #include "crosscheck_budget.hpp"
+#include "dynamics/friction.hpp"
 #include "mo2d/crosscheck.hpp"
 #include "mo2d/error.hpp"
 
@@ -25,6 +26,7 @@ namespace {
 
 using crosscheck_detail::Box2DWorld;
 using crosscheck_detail::JointMap;
+using detail::friction_rate;
 
 std::string num(double v) {  // 6 significant digits, for messages
   char b[32];
@@ -40,11 +42,13 @@ int label_index(const std::vector<std::string>& labels, const std::string& label
 
 // Per-channel error of scalar series (efforts) or of 2D vectors (reaction forces).
 ChannelError channel_error(const std::string& label, const Eigen::VectorXd& time,
-                           const Eigen::MatrixXd& ref, const Eigen::MatrixXd& box) {
+                           const Eigen::MatrixXd& ref, const Eigen::MatrixXd& box,
+                           const std::vector<char>& excluded) {
   ChannelError e;
   e.label = label;
   double sum = 0;
   for (Eigen::Index k = 0; k < ref.rows(); ++k) {
+    if (excluded[k]) continue;
     e.peak = std::fmax(e.peak, ref.row(k).norm());
     const double d = (box.row(k) - ref.row(k)).norm();
     sum += d * d;
@@ -53,7 +57,8 @@ ChannelError channel_error(const std::string& label, const Eigen::VectorXd& time
       e.max_time = time[k];
     }
   }
-  const double n = static_cast<double>(std::max<Eigen::Index>(ref.rows(), 1));
+  const auto kept = static_cast<Eigen::Index>(std::count(excluded.begin(), excluded.end(), 0));
+  const double n = static_cast<double>(std::max<Eigen::Index>(kept, 1));
   const double peak = e.peak > 0 ? e.peak : 1.0;
   e.rms = std::sqrt(sum / n) / peak;
   e.max /= peak;
@@ -76,6 +81,113 @@ void judge(CrosscheckReport& r, const CrosscheckOptions& o) {
   check(r.efforts, o.effort_rms_tolerance, o.effort_max_tolerance, "effort");
   check(r.reactions, o.reaction_rms_tolerance, o.reaction_max_tolerance, "reaction");
   r.agree = r.failures.empty();
+}
+
+// Coulomb friction jumps where its joint's rate changes sign: a step whose interval holds such a
+// reversal of the exact motion has no one value to compare (Box2D's motor idiom flips within
+// the step, mo2d's sign(v(t_n)) at the next): it is left out of the statistics, and noted.
+class ReversalWatch {
+ public:
+  ReversalWatch(const Model& m, const Eigen::VectorXd& q1) : m_(m), rate_(m.frictions.size()) {
+    for (size_t f = 0; f < m.frictions.size(); ++f) rate_[f] = friction_rate(m.frictions[f], q1);
+  }
+  // The exact rates at the end of the step: whether a Coulomb friction reverses within it.
+  bool step_to(const Eigen::VectorXd& q1) {
+    bool reversal = false;
+    for (size_t f = 0; f < m_.frictions.size(); ++f) {
+      const double next = friction_rate(m_.frictions[f], q1);
+      reversal = reversal || (m_.frictions[f].mu != 0 && rate_[f] * next < 0);
+      rate_[f] = next;
+    }
+    return reversal;
+  }
+  void exclude(double t) { times_ += (times_.empty() ? "" : ", ") + num(t); }
+  void note(CrosscheckReport& r) const {
+    if (!times_.empty())
+      r.notes.push_back("a joint with Coulomb friction reverses within the steps at t = " + times_ +
+                        " s: the friction jumps there, those steps are not compared");
+  }
+
+ private:
+  const Model& m_;
+  std::vector<double> rate_;
+  std::string times_;
+};
+
+// Box2D starts `settle` steps before t0 (see CrosscheckOptions::settle_steps): velocities of
+// t_start - h/2 (into q1_start), positions of t_start (left in sim). Returns settle (0 when the
+// motion cannot be solved before t0, noted in r).
+int start_state(const Model& simulated, InverseData& sim, double t0, double h,
+                const CrosscheckOptions& check, CrosscheckReport& r, Eigen::VectorXd& q1_start) {
+  int settle = std::max(check.settle_steps, 0);
+  for (;;) {
+    const double t_start = t0 - settle * h;
+    try {
+      sim.has_previous = false;
+      inverse_dynamics_sample(simulated, sim, t_start - h / 2);
+      q1_start = sim.q1;
+      sim.has_previous = false;
+      inverse_dynamics_sample(simulated, sim, t_start);
+      return settle;
+    } catch (const Error& e) {
+      if (settle == 0) throw;
+      r.notes.push_back("the motion cannot be solved before t0 (" + std::string(e.what()) +
+                        "): Box2D starts at t0, its first " + std::to_string(check.skip_steps) +
+                        " steps are not compared");
+      settle = 0;
+    }
+  }
+}
+
+// Effort labels: the reference's inputs, matched to the simulated inputs by label (their columns
+// in the reference; r.effort_labels filled).
+std::vector<int> effort_columns(const Model& reference, const Model& simulated,
+                                CrosscheckReport& r) {
+  const std::vector<std::string> ref_inputs = reference.input_labels();
+  std::vector<int> effort_col;
+  for (const Input& in : simulated.inputs) {
+    r.effort_labels.push_back(in.label);
+    const int c = label_index(ref_inputs, in.label);
+    if (c < 0)
+      throw Error("Box2D cross-check: reference has no input '" + in.label + "'", in.label);
+    effort_col.push_back(c);
+  }
+  return effort_col;
+}
+
+// The Fx column in the reference of every Box2D joint (r.reaction_labels filled).
+std::vector<int> reaction_columns(const Model& reference, const std::vector<JointMap>& joints,
+                                  CrosscheckReport& r) {
+  const std::vector<std::string> ref_reactions = reference.reaction_labels();
+  std::vector<int> reaction_col;
+  for (const JointMap& j : joints) {
+    const int c = label_index(ref_reactions, j.name + ".Fx");
+    if (c < 0)
+      throw Error("Box2D cross-check: reference has no reaction '" + j.name + ".Fx'", j.name);
+    reaction_col.push_back(c);
+    r.reaction_labels.push_back(j.name + ".Fx");
+    r.reaction_labels.push_back(j.name + ".Fy");
+  }
+  return reaction_col;
+}
+
+// The channels' errors (steps marked in `excluded` left out) and the verdict.
+void summarize(CrosscheckReport& r, const std::vector<JointMap>& joints,
+               const std::vector<char>& excluded, const CrosscheckOptions& check) {
+  for (Eigen::Index k = 0; k < r.mo2d_efforts.cols(); ++k) {
+    r.efforts.push_back(channel_error(r.effort_labels[k], r.time, r.mo2d_efforts.col(k),
+                                      r.box2d_efforts.col(k), excluded));
+    r.effort_rms = std::fmax(r.effort_rms, r.efforts.back().rms);
+    r.effort_max = std::fmax(r.effort_max, r.efforts.back().max);
+  }
+  for (size_t k = 0; k < joints.size(); ++k) {
+    const auto c = static_cast<Eigen::Index>(2 * k);
+    r.reactions.push_back(channel_error(joints[k].name, r.time, r.mo2d_reactions.middleCols(c, 2),
+                                        r.box2d_reactions.middleCols(c, 2), excluded));
+    r.reaction_rms = std::fmax(r.reaction_rms, r.reactions.back().rms);
+    r.reaction_max = std::fmax(r.reaction_max, r.reactions.back().max);
+  }
+  judge(r, check);
 }
 
 }  // namespace
@@ -112,27 +224,8 @@ CrosscheckReport crosscheck_inverse(const Model& reference_in, const Model& simu
   const int steps = static_cast<int>(steps_wanted);
   InverseData sim(simulated, motion, options), ref(reference, motion, options);
 
-  // Box2D starts `settle` steps before t0 (see CrosscheckOptions::settle_steps): velocities of
-  // t_start - h/2, positions of t_start (see the top of this file).
-  int settle = std::max(check.settle_steps, 0);
   Eigen::VectorXd q1_start;
-  for (;;) {
-    const double t_start = t0 - settle * h;
-    try {
-      sim.has_previous = false;
-      inverse_dynamics_sample(simulated, sim, t_start - h / 2);
-      q1_start = sim.q1;
-      sim.has_previous = false;
-      inverse_dynamics_sample(simulated, sim, t_start);
-      break;
-    } catch (const Error& e) {
-      if (settle == 0) throw;
-      r.notes.push_back("the motion cannot be solved before t0 (" + std::string(e.what()) +
-                        "): Box2D starts at t0, its first " + std::to_string(check.skip_steps) +
-                        " steps are not compared");
-      settle = 0;
-    }
-  }
+  const int settle = start_state(simulated, sim, t0, h, check, r, q1_start);
   const int skip = settle > 0 ? 0 : std::max(check.skip_steps, 0);
   if (steps - skip < check.min_compared_steps)
     throw Error("Box2D cross-check of '" + simulated.name +
@@ -151,26 +244,8 @@ CrosscheckReport crosscheck_inverse(const Model& reference_in, const Model& simu
     throw Error("Box2D cross-check of '" + simulated.name + "': an input has no motor",
                 simulated.name);
 
-  // Effort labels: the reference's inputs, matched to the simulated inputs by label.
-  const std::vector<std::string> ref_inputs = reference.input_labels();
-  const std::vector<std::string> ref_reactions = reference.reaction_labels();
-  std::vector<int> effort_col;
-  for (const Input& in : simulated.inputs) {
-    r.effort_labels.push_back(in.label);
-    const int c = label_index(ref_inputs, in.label);
-    if (c < 0)
-      throw Error("Box2D cross-check: reference has no input '" + in.label + "'", in.label);
-    effort_col.push_back(c);
-  }
-  std::vector<int> reaction_col;  // Fx column in the reference, per Box2D joint
-  for (const JointMap& j : w.joints) {
-    const int c = label_index(ref_reactions, j.name + ".Fx");
-    if (c < 0)
-      throw Error("Box2D cross-check: reference has no reaction '" + j.name + ".Fx'", j.name);
-    reaction_col.push_back(c);
-    r.reaction_labels.push_back(j.name + ".Fx");
-    r.reaction_labels.push_back(j.name + ".Fy");
-  }
+  const std::vector<int> effort_col = effort_columns(reference, simulated, r);
+  const std::vector<int> reaction_col = reaction_columns(reference, w.joints, r);
 
   const int n_motor = static_cast<int>(motors.size());
   const int n_joint = static_cast<int>(w.joints.size());
@@ -189,6 +264,8 @@ CrosscheckReport crosscheck_inverse(const Model& reference_in, const Model& simu
     s_now[k] = joint_coordinate(simulated, w, *motors[k], sim.q0);
     if (motors[k]->linear_motor) s_exact[k] = s_now[k];
   }
+  std::vector<char> excluded(rows, 0);
+  ReversalWatch reversals(simulated, sim.q1);
   const double inv_dt = 1.0 / h;
   detail::RunBudget budget(box2d_budget(what, simulated.name, t0, options.t1, check));
   for (int n = -settle; n < steps; ++n) {
@@ -216,7 +293,8 @@ CrosscheckReport crosscheck_inverse(const Model& reference_in, const Model& simu
       s_now[k] = s_next;
       s_exact[k] += ds;
     }
-    apply_loads(simulated, w, t);
+    const bool reversal = reversals.step_to(sim.q1);
+    apply_loads(simulated, w, t, h);
     w.world->Step(static_cast<float>(h), check.velocity_iterations, check.position_iterations);
     for (int k = 0; k < n_motor; ++k) {
       const double err = box2d_joint_coordinate(*motors[k]) - s_exact[k];
@@ -224,6 +302,10 @@ CrosscheckReport crosscheck_inverse(const Model& reference_in, const Model& simu
     }
     if (n < skip) continue;
     const int row = n - skip;
+    if (reversal) {
+      excluded[row] = 1;
+      reversals.exclude(t);
+    }
     const double tc = t + check.sample_offset * h;
     inverse_dynamics_sample(reference, ref, tc);
     r.time[row] = tc;
@@ -239,24 +321,11 @@ CrosscheckReport crosscheck_inverse(const Model& reference_in, const Model& simu
       r.box2d_reactions(row, 2 * k + 1) = F.y();
     }
   }
+  reversals.note(r);
   r.steps = steps;
   r.settle_steps = settle;
   r.compared_steps = rows;
-
-  for (int k = 0; k < n_motor; ++k) {
-    r.efforts.push_back(
-        channel_error(r.effort_labels[k], r.time, r.mo2d_efforts.col(k), r.box2d_efforts.col(k)));
-    r.effort_rms = std::fmax(r.effort_rms, r.efforts.back().rms);
-    r.effort_max = std::fmax(r.effort_max, r.efforts.back().max);
-  }
-  for (int k = 0; k < n_joint; ++k) {
-    r.reactions.push_back(channel_error(w.joints[k].name, r.time,
-                                        r.mo2d_reactions.middleCols(2 * k, 2),
-                                        r.box2d_reactions.middleCols(2 * k, 2)));
-    r.reaction_rms = std::fmax(r.reaction_rms, r.reactions.back().rms);
-    r.reaction_max = std::fmax(r.reaction_max, r.reactions.back().max);
-  }
-  judge(r, check);
+  summarize(r, w.joints, excluded, check);
   r.cpu_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return r;
 }

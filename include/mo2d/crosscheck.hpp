@@ -11,10 +11,16 @@
 // an explicit constraint naming its two bodies):
 //   revolute -> b2RevoluteJoint; prismatic -> b2PrismaticJoint (b2WheelJoint when the rotation is
 //   not locked); pin-in-slot -> b2WheelJoint with zero stiffness; actuated joints -> motors;
-//   gravity, point forces and torques -> b2World gravity, ApplyForce, ApplyTorque.
-//   Extra coordinates only observe the motion and are accepted. User constraints, springs, a
-//   massless body, a rotating body without centroidal inertia and a driven slide of a
-//   pin-in-slot are refused with an Error naming the element.
+//   gear pairs and racks -> b2GearJoint; linear springs (k > 0) -> b2DistanceJoint with their
+//   stiffness and damping; gravity -> b2World gravity; every other load (spring laws, dampers,
+//   torsional springs, forces and torques of time or of the state, efforts, controllers, joint
+//   friction not carried by a motor) -> forces and torques each step, computed by mo2d's load
+//   functions on Box2D's own state (docs/crosscheck.md, "Shared code"); joint friction in a free
+//   joint -> its motor at speed 0 with the friction as its limit.
+//   Extra coordinates only observe the motion and are accepted. User constraints, chains, a
+//   massless body and a driven slide of a pin-in-slot are refused with an Error naming the
+//   element; a rotating body without centroidal inertia gets zero_inertia_fraction in both
+//   engines (0: refused).
 #include <Eigen/Core>
 #include <iosfwd>
 #include <span>
@@ -56,11 +62,17 @@ struct CrosscheckOptions {
   // outside what the tolerances were measured for (at most 0.0063 rad per step, the slider-crank
   // at 1/2000 s): an error asking for a smaller step (0: no check).
   double max_motion_per_step = 0.01;
+  // Forward cross-check: a body turning more than max_motion_per_step (rad) in one Box2D step
+  // along mo2d's trajectory is an error asking for a smaller step; with refine_step the step is
+  // halved until it holds instead (noted in the result; the CLI sets it when --step is not given).
+  bool refine_step = false;
   double max_motor_torque = 1e6, max_motor_force = 1e6;  // motor limits (N m, N)
   // A rotating body whose centroidal inertia is 0 (a point mass on a massless link) cannot turn
   // in Box2D; if > 0 such bodies get I = fraction * m * (farthest node distance)^2 in BOTH the
-  // Box2D world and the mo2d reference (recorded in the report); 0: refuse them.
-  double zero_inertia_fraction = 0.0;
+  // Box2D world and the mo2d reference (recorded in the report's notes); 0: refuse them. The
+  // comparison does not depend on the fraction (both engines carry the same inertia: the pendulum
+  // agrees alike at 1/12 and 1/48, docs/crosscheck.md), so it is on by default.
+  double zero_inertia_fraction = 1.0 / 12;
   // Agreement: each channel's error relative to its peak. Chosen for the default step and
   // iterations from the convergence study (docs/crosscheck.md): the examples' errors are ~c h with
   // c <= 12/s (RMS) and <= 30/s (max), i.e. <= 0.6 % and 1.5 % at h = 1/2000 s; 2x margin.
@@ -149,11 +161,39 @@ struct ForwardCrosscheck {
   double final_position_error = 0, final_angle_error = 0;
   double relative_position_error = 0;                       // max_position_error / Model::scale
   Eigen::VectorXd time{}, position_error{}, angle_error{};  // per instant, worst body
+  // Not empty when Box2D left the assembly branch that mo2d keeps (a revolute joint's
+  // sin(theta2 - theta1) changed sign in Box2D only): the joint, the time and both values. A
+  // disagreement then is Box2D's (its first-order step crossed a singular position).
+  std::string branch_switch{};
+  std::vector<std::string> notes{};  // substitutions made (zero_inertia_fraction)
+  // Evidence of Box2D's own drift: per instant, Box2D's mechanical energy (kinetic_energy and
+  // potential_energy, mo2d's functions, of Box2D's state) minus mo2d's (J); and mo2d's own
+  // energy-balance error over the run (energy_balance_error, J) and its largest kinetic energy.
+  Eigen::VectorXd energy_difference{};
+  double mo2d_energy_error = 0, kinetic_peak = 0;
 };
+// Why a forward cross-check disagrees, when Box2D is the cause: its branch switch
+// (ForwardCrosscheck::branch_switch), or, at the first instant an error exceeds its tolerance
+// (position relative to the size, angle in rad), a mechanical energy that differs from mo2d's by
+// more than 10x mo2d's own energy-balance error and 1e-4 of the kinetic energy peak (Box2D's
+// first-order float32 step drifts; a motion that is sensitive to its energy, like one passing
+// near an unstable position, amplifies the drift). "" when neither holds.
+std::string box2d_cause(const ForwardCrosscheck& r, double position_tolerance,
+                        double angle_tolerance);
 // Forward cross-check of `model` from `initial` up to t1 (s), compared at `samples` instants (see
 // ForwardCrosscheck).
+// `efforts`: one law per Model::inputs entry (ForwardOptions::efforts: of time, or of the state,
+// e.g. PD controllers), applied in both engines (in Box2D evaluated on its own state).
 ForwardCrosscheck crosscheck_forward(const Model& model, const State& initial, double t1,
-                                     const CrosscheckOptions& check = {}, int samples = 101);
+                                     const CrosscheckOptions& check = {}, int samples = 101,
+                                     const EffortLaws& efforts = {});
+// The same with mo2d integrating `reference` and Box2D `model` (same variables): a test plants
+// an error in `reference` (a spring constant, a damper's node, a friction sign, a load's point)
+// to see that the comparison catches it.
+ForwardCrosscheck crosscheck_forward(const Model& reference, const Model& model,
+                                     const State& initial, double t1,
+                                     const CrosscheckOptions& check, int samples,
+                                     const EffortLaws& efforts = {});
 
 // A fixed-width table of the report (one line per channel) and its CSV (atomic write):
 // columns t, then for each effort and reaction label "mo2d.<label>" and "box2d.<label>".

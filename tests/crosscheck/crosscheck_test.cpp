@@ -143,6 +143,23 @@ TEST(Crosscheck, ForwardDoubleFourbarFollowsMo2d) {
   EXPECT_LT(r.max_angle_error, 6e-3);
 }
 
+// The shipped double four-bar (crank0.w = -1) disagrees after ~1.7 s. Not a branch switch: Box2D
+// keeps the cranks parallel (within 1.2e-4 rad over 10 s). Box2D's mechanical energy, measured
+// with mo2d's energy functions on Box2D's state, is 0.59 J (0.8 % of the kinetic peak) below
+// mo2d's there, while mo2d's energy balance holds to 3e-6 J; the drift halves with the step
+// (1.13, 0.59, 0.30, 0.15 J at h = 1/1000 ... 1/8000 s) and the disagreement comes later (1.4,
+// 1.7, 1.9, 2.1 s): Box2D's first-order step, which the motion amplifies.
+TEST(Crosscheck, ForwardDoubleFourbarDisagreementIsBox2DEnergyDrift) {
+  const Scene scene = load_scene(std::string(MO2D_MECHANISMS_DIR) + "/double_fourbar.yaml");
+  const Model m = build_scene_model(scene, {.reduction = Reduction::none});
+  const ForwardCrosscheck r = crosscheck_forward(m, initial_state(scene, m), 2.5, {}, 26);
+  EXPECT_GT(r.relative_position_error, 1e-2);  // the CLI's default tolerance: DISAGREE
+  EXPECT_EQ(r.branch_switch, "");
+  const std::string cause = box2d_cause(r, 1e-2, 2e-2);
+  EXPECT_NE(cause.find("Box2D's mechanical energy"), std::string::npos) << cause;
+  EXPECT_NE(cause.find("t = 1.7 s"), std::string::npos) << cause;
+}
+
 TEST(Crosscheck, ForwardPendulumFollowsMo2d) {
   CrosscheckOptions o;
   o.zero_inertia_fraction = 1.0 / 12;
@@ -154,8 +171,10 @@ TEST(Crosscheck, ForwardPendulumFollowsMo2d) {
 
 TEST(Crosscheck, RefusesZeroInertiaRotatingBody) {
   const mechanisms::Example ex = mechanisms::pendulum();
+  CrosscheckOptions o;
+  o.zero_inertia_fraction = 0;  // the default (1/12) substitutes an inertia in both engines
   try {
-    crosscheck_inverse(ex.system, ex.motion, horizon(ex, 0.1));
+    crosscheck_inverse(ex.system, ex.motion, horizon(ex, 0.1), o);
     FAIL() << "expected an Error";
   } catch (const Error& e) {
     EXPECT_EQ(e.element(), "link");
@@ -163,21 +182,30 @@ TEST(Crosscheck, RefusesZeroInertiaRotatingBody) {
   }
 }
 
-TEST(Crosscheck, RefusesSpring) {
+TEST(Crosscheck, FourbarWithSpringAgreesWithBox2D) {
+  // a spring from the ground to the coupler: a b2DistanceJoint with its stiffness (it was refused)
   mechanisms::Example ex = mechanisms::fourbar();
   ex.system.add_spring({.name = "bungee",
                         .body_a = "ground",
                         .point_a = {0.2, 0.5},
                         .body_b = "coupler",
                         .point_b = {0.1, 0.3},
-                        .stiffness = 10});
-  try {
-    crosscheck_inverse(ex.system, ex.motion, horizon(ex, 0.1));
-    FAIL() << "expected an Error";
-  } catch (const Error& e) {
-    EXPECT_EQ(e.element(), "bungee");
-    EXPECT_NE(std::string(e.what()).find("spring 'bungee'"), std::string::npos) << e.what();
-  }
+                        .rest_length = 0.1,
+                        .stiffness = 400});
+  check_example(ex, 0.6);
+}
+
+// The comparison does not depend on the inertia substituted for a point mass: both engines carry
+// it (1/12 and 1/48 of m L^2: both agree, effort RMS 2.1e-4 and 1.6e-4 of peak, 50x below the
+// tolerance; they differ by 5e-5 of peak).
+TEST(Crosscheck, PendulumComparisonDoesNotDependOnTheInertiaFraction) {
+  CrosscheckOptions a, b;
+  a.zero_inertia_fraction = 1.0 / 12;
+  b.zero_inertia_fraction = 1.0 / 48;
+  const CrosscheckReport ra = check_example(mechanisms::pendulum(), 0.6, a);
+  const CrosscheckReport rb = check_example(mechanisms::pendulum(), 0.6, b);
+  EXPECT_NEAR(ra.effort_rms, rb.effort_rms, 1e-3) << table(ra) << table(rb);
+  EXPECT_NEAR(ra.reaction_rms, rb.reaction_rms, 1e-3) << table(ra) << table(rb);
 }
 
 TEST(Crosscheck, RefusesUserConstraint) {

@@ -11,7 +11,7 @@
 //   round trip: the inverse efforts fed to forward dynamics reproduce the motion;
 //   forward energy: kinetic + potential + dissipated - input, load and constraint work constant
 //     (all loads, every mechanism), and the forward energies equal the independent ones;
-//   Box2D: the cross-check agrees (mechanisms without springs).
+//   Box2D: the cross-check agrees (springs and loads translated, issue 32).
 //
 // Count and seed: MO2D_META_COUNT (default 300, 40 in a sanitizer build), MO2D_META_SEED
 // (default 1; mechanism k has seed SEED + k). A failure prints the seed: reproduce it alone with
@@ -459,6 +459,70 @@ double env_double(const char* name, double fallback) {
   return v && *v ? std::strtod(v, nullptr) : fallback;
 }
 
+// What the mechanisms the Box2D relation compared carried (printed after the table).
+struct Box2DContent {
+  long compared = 0, springs = 0, dampers = 0, torsional = 0, state_loads = 0, friction = 0;
+  void count(const Model& m) {
+    ++compared;
+    bool k = false, c = false, law = false;
+    for (const SpringLoad& sp : m.springs) {
+      k = k || sp.stiffness > 0;
+      c = c || (sp.stiffness == 0 && sp.damping > 0);
+    }
+    for (const TorqueLoad& t : m.torques) law = law || !t.torque.args.empty();
+    for (const PointLoad& f : m.forces) law = law || !f.fx.args.empty() || !f.fy.args.empty();
+    springs += k;
+    dampers += c;
+    torsional += !m.torsional_springs.empty();
+    state_loads += law;
+    friction += !m.frictions.empty();
+  }
+};
+Box2DContent box2d_content;
+
+// The mechanism the Box2D relation compares (issue 32): the generated one plus, on its root, a
+// pure damper (k = 0) from a ground point to the first rotating body's first node, a drag torque
+// -c w on that body (a law of the state) and viscous and Coulomb friction in the first unactuated
+// revolute joint. Magnitudes from the body's mass, the mechanism's length L and time tau: damper
+// 0.5 m / tau, drag 0.2 m L^2 / tau, friction viscous 0.05 m L^2 / tau, mu 0.1 with a pin radius
+// of L / 50. *added counts the elements added.
+System box2d_variant(const Mechanism& mech, int* added) {
+  System sys = to_system(mech);
+  *added = 0;
+  const double L = mech.length, tau = mech.time;
+  for (const BodySpec& b : mech.root.bodies) {
+    if (!b.rotates() || b.nodes.empty() || !(b.mass > 0)) continue;
+    const Vec2 p = b.nodes.front().position;
+    sys.add_spring({.name = "box2d_damper",
+                    .body_a = "ground",
+                    .point_a = p + Vec2(0.3 * L, -0.4 * L),
+                    .body_b = b.name,
+                    .point_b = p,
+                    .rest_length = 0.5 * L,
+                    .damping = 0.5 * b.mass / tau});
+    const double c = 0.2 * b.mass * L * L / tau;
+    sys.add_torque(
+        {.name = "box2d_drag",
+         .body = b.name,
+         .torque = Law({b.name + ".w"}, [c](std::span<const Jet> x, Jet) { return -c * x[0]; })});
+    *added += 2;
+    break;
+  }
+  for (const RevoluteDef& j : mech.root.revolutes) {
+    if (j.actuated) continue;
+    double m = 0;
+    for (const BodySpec& b : mech.root.bodies) m = std::max(m, b.mass);
+    sys.add_friction({.name = "box2d_friction",
+                      .joint = j.name,
+                      .viscous = 0.05 * m * L * L / tau,
+                      .mu = 0.1,
+                      .radius = L / 50});
+    ++*added;
+    break;
+  }
+  return sys;
+}
+
 // ---- relations on one mechanism -----------------------------------------------------------------
 void check_mechanism(const Mechanism& mech, Table& table) {
   Rng rng(mech.seed ^ 0x9e3779b97f4a7c15ull);
@@ -655,7 +719,8 @@ void check_mechanism(const Mechanism& mech, Table& table) {
     });
   }
 
-  // Box2D: mechanisms it can translate (no springs), with the library's default start (settling
+  // Box2D: every mechanism (springs as distance joints or forces, torsional springs, loads: issue
+  // 32; crosscheck/box2d_loads.cpp), with the library's default start (settling
   // on the motion before t0) and feedback, the step scaled with the mechanism's time. Compared:
   //  - mass ratios (largest body over the smallest) <= 10, as Box2D's manual asks (sequential
   //    impulses lose accuracy beyond). Measured with settling: on seeds 1..300 every settled
@@ -675,19 +740,19 @@ void check_mechanism(const Mechanism& mech, Table& table) {
     mmin = std::min(mmin, b.mass), mmax = std::max(mmax, b.mass);
   const double ratio_limit = env_double("MO2D_META_BOX2D_RATIO", kBox2dMassRatio);
   const std::string box2d = "Box2D cross-check";
-  if (mech.has_springs()) {
-    table.skip(box2d, 1.0, "springs (Box2D has none)");
-    return;
-  }
   if (mmax > ratio_limit * mmin) {
     table.skip(box2d, 1.0, "mass ratio > limit");
     return;
   }
   CrosscheckOptions c;  // the library's defaults, but the step
   c.step = mech.time / 640;
+  c.velocity_iterations = static_cast<int>(env_double("MO2D_META_BOX2D_VELOCITY_ITERATIONS", 50));
   CrosscheckReport r;
+  int added = 0;
+  const System variant =
+      env_double("MO2D_META_BOX2D_PLAIN", 0) != 0 ? sys : box2d_variant(mech, &added);
   try {
-    r = crosscheck_inverse(sys, motion, {.t0 = 0, .t1 = mech.t1}, c);
+    r = crosscheck_inverse(variant, motion, {.t0 = 0, .t1 = mech.t1}, c);
   } catch (const std::exception& e) {
     table.failure(box2d, 1.0, mech, std::string("threw: ") + e.what());
     return;
@@ -708,6 +773,7 @@ void check_mechanism(const Mechanism& mech, Table& table) {
     std::printf("  Box2D: mass ratio %.3g, %d compared steps, deviation %.3g (%s)\n", mmax / mmin,
                 r.compared_steps, d.worst, d.where.c_str());
   table.record(box2d, 1.0, mech, d);
+  box2d_content.count(build_model(variant, {.reduction = Reduction::none}));
 }
 
 }  // namespace
@@ -742,6 +808,11 @@ TEST(Metamorphic, GeneratedMechanisms) {
       static_cast<unsigned long long>(seed + count - 1), seconds, stats.candidates, stats.accepted);
   for (const auto& [reason, n] : stats.rejected)
     std::printf("  rejected %6ld: %s\n", n, reason.c_str());
+  std::printf(
+      "Box2D compared %ld mechanisms: with linear springs %ld, dampers %ld, torsional springs %ld, "
+      "loads of the state %ld, joint friction %ld\n",
+      box2d_content.compared, box2d_content.springs, box2d_content.dampers, box2d_content.torsional,
+      box2d_content.state_loads, box2d_content.friction);
   std::printf("modules:");
   for (const auto& [f, n] : stats.families) std::printf(" %s %ld,", f.c_str(), n);
   std::printf("\n");
