@@ -18,7 +18,8 @@ A fenced block is acted on by the braces after its language:
   ```text {expect}              each non-empty line must appear, as written, in the output of the
                                 block run just before (stdout and stderr together)
 Blocks without braces are prose. A page with the line <!-- tutorial: python --> needs the Python
-package: without --python it is skipped (exit status 77). Variables of the test harness pass
+package: without --python it is skipped (exit status 77); on another page, without --python, the
+Python blocks that import mo2d are skipped (the README's example) and PYTHONPATH is left unset. Variables of the test harness pass
 through to the blocks (sanitizer options, MPLBACKEND, CXXFLAGS/LDFLAGS of a sanitized build).
 Each block has --timeout seconds (a block that hangs fails, it does not stall the suite).
 
@@ -61,6 +62,7 @@ def blocks(text):
 PASSED_THROUGH = ("LSAN_OPTIONS", "ASAN_OPTIONS", "UBSAN_OPTIONS", "MPLBACKEND",
                   "PYTHONDONTWRITEBYTECODE", "CXXFLAGS", "LDFLAGS", "TMPDIR")
 SYSTEM_PATH = "/usr/local/bin:/usr/bin:/bin"
+IMPORTS_MO2D = re.compile(r"^\s*(import|from)\s+mo2d\b", re.M)
 EXPORT = re.compile(r"\bexport\s+((?:[A-Za-z_][A-Za-z0-9_]*=(?:\"[^\"]*\"|\S*)\s*)+)")
 
 
@@ -77,6 +79,8 @@ def page_env(body, env, values, where):
     if not names:
         sys.exit(f"{where}: an env block that exports nothing")
     for name in names:
+        if name == "PYTHONPATH" and values[name] is None:
+            continue  # no Python package here: the blocks that import it are skipped
         if name not in values or values[name] is None:
             sys.exit(f"{where}: the test cannot emulate `export {name}=...` "
                      f"(known here: {', '.join(k for k, v in values.items() if v is not None)})")
@@ -133,6 +137,7 @@ def main():
     env = clean_env()
 
     last = None  # output of the last block run
+    skipping = False  # the last block to run was skipped (and so is its expect block)
     for lang, attrs, body, line in todo:
         where = f"{a.tutorial}:{line}"
         if "env" in attrs:
@@ -143,7 +148,13 @@ def main():
             os.makedirs(os.path.dirname(path), exist_ok=True)
             with open(path, "w", encoding="utf-8") as f:
                 f.write(body)
+        if "run" in attrs and lang == "python" and not a.python and IMPORTS_MO2D.search(body):
+            print(f"== {where}: skipped, needs mo2d's Python package (MO2D_PYTHON=OFF here)")
+            last = ""
+            skipping = True
+            continue
         if "run" in attrs:
+            skipping = False
             script = attrs.get("file") or f"block_{line}.py"
             print(f"== {where}: {body.strip().splitlines()[0]}", flush=True)
             code, last = run_block(lang, body, a.work, env, a.timeout, script)
@@ -152,7 +163,7 @@ def main():
                 sys.exit(f"{where}: the block did not end within {a.timeout:g} s")
             if code != 0:
                 sys.exit(f"{where}: the block exited with status {code}")
-        elif "expect" in attrs:
+        elif "expect" in attrs and not skipping:
             if last is None:
                 sys.exit(f"{where}: an expect block with no block run before it")
             for want in filter(None, (s.strip() for s in body.splitlines())):
