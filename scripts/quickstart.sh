@@ -28,5 +28,5 @@ echo "  filmstrip of the motion:                     $(pwd)/out/whitworth_filmst
 echo "  crank torque plot:                           $(pwd)/out/whitworth_efforts.png"
 echo "  command-line tool:                           $(pwd)/build/mo2d --help"
 echo "  scene files:                                 $(pwd)/mechanisms/*.yaml (build/mo2d info|inverse|forward|render|crosscheck SCENE)"
-echo "  optional parts (Python module, tests, ...):   $(pwd)/build/mo2d doctor"
+echo "  optional parts (Python module, tests...):     $(pwd)/build/mo2d doctor"
 echo "  next: ./scripts/test.sh (Release + ASan/UBSan test suites, the Python module)"
