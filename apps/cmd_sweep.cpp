@@ -3,42 +3,28 @@
 // docs/sweeps.md): this command replaces the process by `python3 -m mo2d sweep ARGS...`, with the
 // interpreter and the package directory this build knows, so both spellings behave the same.
 // The package is looked for next to this executable first (an installed tree:
-// BIN/../MO2D_PYTHON_INSTALL_DIR), then in the build tree; PYTHONPATH keeps what it had after it.
+// BIN/../MO2D_PYTHON_INSTALL_DIR), then in the build tree (python_package.hpp); PYTHONPATH keeps
+// what it had after it.
 #include <unistd.h>
 
 #include <cerrno>
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
-#include <filesystem>
 #include <string>
 #include <vector>
 
 #include "command.hpp"
 #include "mo2d/error.hpp"
+#include "python_package.hpp"
 
 namespace mo2d::cli {
 
 namespace {
 
-namespace fs = std::filesystem;
-
 #ifdef MO2D_PYTHON_EXECUTABLE
-// The folder holding the mo2d package: installed beside this executable, else the build's.
-std::string package_dir() {
-  std::error_code ec;
-  const fs::path exe = fs::read_symlink("/proc/self/exe", ec);
-  if (!ec) {
-    const fs::path installed = exe.parent_path().parent_path() / MO2D_PYTHON_INSTALL_DIR;
-    if (fs::exists(installed / "mo2d" / "__init__.py")) return installed.string();
-  }
-  if (fs::exists(fs::path(MO2D_PYTHON_BUILD_DIR) / "mo2d" / "__init__.py"))
-    return MO2D_PYTHON_BUILD_DIR;
-  return {};  // rely on python3's own sys.path
-}
-
 int sweep(const std::vector<std::string>& args) {
-  const std::string dir = package_dir();
+  const std::string dir = python_package_dir();
   if (!dir.empty()) {
     const char* old = std::getenv("PYTHONPATH");
     const std::string path = old != nullptr && *old != 0 ? dir + ":" + old : dir;
@@ -47,6 +33,7 @@ int sweep(const std::vector<std::string>& args) {
   std::vector<std::string> argv = {MO2D_PYTHON_EXECUTABLE, "-m", "mo2d", "sweep"};
   argv.insert(argv.end(), args.begin(), args.end());
   std::vector<char*> c_argv;
+  c_argv.reserve(argv.size() + 1);
   for (auto& a : argv) c_argv.push_back(a.data());
   c_argv.push_back(nullptr);
   std::fflush(stdout);

@@ -14,7 +14,8 @@ namespace {
 
 namespace fs = std::filesystem;
 
-constexpr std::string_view kCoreCommands[] = {"info", "inverse", "forward", "sweep", "--version"};
+constexpr std::string_view kCoreCommands[] = {"info",  "inverse", "forward",
+                                              "sweep", "doctor",  "--version"};
 constexpr std::string_view kDrawingCommands[] = {"demo", "render", "crosscheck",
                                                  "plot", "modes",  "linearize"};
 

@@ -20,8 +20,8 @@ using AddDrawingCommand = bool (*)(const char* version, const char* name, CLI::A
 inline constexpr const char* kDrawEntry = "mo2d_add_drawing_command";
 
 // Whether the command line asks for a drawing command, or for something that lists them (no
-// arguments, --help, an unknown subcommand): everything but info, inverse, forward, sweep and
-// --version.
+// arguments, --help, an unknown subcommand): everything but info, inverse, forward, sweep, doctor
+// (which loads the module itself) and --version.
 bool needs_drawing_commands(int argc, char** argv);
 // Whether argv[1] names a drawing command.
 bool names_drawing_command(int argc, char** argv);

@@ -64,19 +64,21 @@ void expect_fidelities_agree(const std::string& text, bool pinned) {
     const double t = full.time[i];
     for (const char* c : {"case.G.x", "case.G.y", "gearbox.phi"})
       EXPECT_NEAR(q0(full, i, c), q0(lumped, i, c), 1e-8) << c << " at " << t;
-    if (!pinned)
+    if (!pinned) {
       for (const char* c : {"case.O.x", "case.O.y"})
         EXPECT_NEAR(q0(full, i, c), q0(lumped, i, c), 1e-8) << c << " at " << t;
+    }
     for (const char* c : {"case.w", "gearbox.phi.rate"}) {
       EXPECT_NEAR(q1(full, i, c), q1(lumped, i, c), 1e-7) << c << " at " << t;
       EXPECT_NEAR(full.a1(i, full.rate_column(c)), lumped.a1(i, lumped.rate_column(c)), 1e-6)
           << c << " at " << t;
     }
-    if (pinned)
+    if (pinned) {
       for (const char* c : {"pivot.Fx", "pivot.Fy"})
         EXPECT_NEAR(full.reactions(i, full.reaction(c)), lumped.reactions(i, lumped.reaction(c)),
                     1e-6)
             << c << " at " << t;
+    }
   }
   EXPECT_GT(std::abs(q0(full, full.time.size() - 1, "gearbox.phi")), 1.0);  // the train turns
   EXPECT_GT(std::abs(q1(full, full.time.size() - 1, "case.w")), 0.05);      // the housing moves
