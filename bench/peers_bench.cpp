@@ -3,9 +3,12 @@
 // each row is one timed run of its own. Built only where MuJoCo is found (libmujoco-dev):
 //   cmake --build build --target mo2d_peers_bench && taskset -c 0 build/bench/mo2d_peers_bench
 // Options: --long adds the MuJoCo runs of 1.6 million steps (about 5 s each); --max-n N caps the
-// chain sizes of the second table (default 400; the dense path is not run past N = 400); --csv
-// FILE writes the second table's costs (seconds) for the plot docs/img/n_scaling.png
-// (bench/scaling_plot.cpp).
+// chain sizes of the second table (default 400; the dense path is not run past N = 400; 0: no
+// second table); --csv FILE writes the second table's costs (seconds) for the plot
+// docs/img/n_scaling.png (bench/scaling_plot.cpp); --engine mo2d|mujoco runs only that engine's
+// rows of the first table (for alternating runs of the two); --self-test checks the harness' read
+// of MuJoCo's crank tip against closed-form kinematics of its joint angle (ctest
+// bench.peers_harness).
 //
 // 1. IFToMM double four-bar, 10 s: error of the first crank tip at t = 10 s against the exact
 //    reference of shared/notes/peers.md (1-DOF parallelogram reduction, 40-digit arithmetic),
@@ -17,13 +20,21 @@
 //
 // MuJoCo's model: the same bars in the x-z plane, hinges about y, each coupler a child of its
 // left crank, the right end closed on the next crank's tip by a `connect` equality; contacts off;
-// Euler; the equality made as stiff as is stable at the step (solref time constant 2 h, critical
+// the equality made as stiff as is stable at the step (solref time constant 2 h, critical
 // damping, solimp 0.9999): MuJoCo's constraints are soft, so this is its most accurate setting.
+// Table 1 adds the rest of the tuned settings of shared/peers/README.md (solver Newton, tolerance
+// 1e-12, 1000 iterations, dense Jacobian) and runs MuJoCo's three integrators (Euler, RK4,
+// implicit); table 2 keeps MuJoCo's default solver settings (cost per step, Euler).
 // Measured: a time constant below 2 h (refsafe off) leaves the branch at every step tried here;
 // solimp 0.99999 or 0.999999 changes the errors by less than 1 %; 0.9 multiplies them by 3-30.
+//
+// The crank tip is read after mj_kinematics of the final state: right after mj_step, site_xpos
+// still holds the kinematics computed at the start of the step (the position at t - h), which
+// alone adds about |v| h to the error (the "error 1.6 h" of earlier versions of this table).
 #include <mujoco/mujoco.h>
 #include <unistd.h>
 
+#include <array>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -65,14 +76,23 @@ State start_state(const Model& m) {
 
 // ---- the mechanism in MuJoCo
 // ----------------------------------------------------------------------
-std::string mjcf(int n, double h) {
+// MuJoCo's settings: table 1 uses the tuned ones of shared/peers/README.md (solver, tolerance,
+// iterations, dense Jacobian) with each integrator; table 2 the default solver, Euler.
+struct MjSettings {
+  const char* integrator = "Euler";  // Euler, RK4 or implicit (MuJoCo 2.2's names)
+  bool tuned = false;
+};
+
+std::string mjcf(int n, double h, MjSettings s = {}) {
   std::ostringstream x;
   x.precision(17);
   x << "<mujoco model='fourbar_chain'>\n"
-    << "  <option timestep='" << h << "' integrator='Euler' gravity='0 0 -9.81'"
-    << " jacobian='" << (n > 10 ? "sparse" : "dense") << "'>\n"
+    << "  <option timestep='" << h << "' integrator='" << s.integrator << "' gravity='0 0 -9.81'"
+    << " jacobian='" << (n > 10 ? "sparse" : "dense") << "'"
+    << (s.tuned ? " solver='Newton' tolerance='1e-12' iterations='1000'" : "") << ">\n"
     << "    <flag contact='disable'/>\n  </option>\n"
-    << "  <default><equality solref='" << 2 * h << " 1' solimp='0.9999 0.9999 0.001'/></default>\n"
+    << "  <default><equality solref='" << 2 * h << " 1' solimp='0.9999 0.9999 0.001 0.5 2'/>"
+    << "</default>\n"
     << "  <size njmax='" << 3 * n + 16 << "'/>\n"  // the equality rows: 3 per connect
     << "  <worldbody>\n";
   const char* rod =
@@ -102,10 +122,10 @@ struct MjRun {
   mjModel* model = nullptr;
   mjData* data = nullptr;
   int tip0 = -1;
-  MjRun(int n, double h) {
+  MjRun(int n, double h, MjSettings s = {}) {
     const std::filesystem::path p = std::filesystem::temp_directory_path() /
                                     ("mo2d_peers_" + std::to_string(::getpid()) + ".xml");
-    std::ofstream(p) << mjcf(n, h);
+    std::ofstream(p) << mjcf(n, h, s);
     char err[1000] = "";
     model = mj_loadXML(p.c_str(), nullptr, err, sizeof err);
     std::filesystem::remove(p);
@@ -117,6 +137,13 @@ struct MjRun {
     tip0 = mj_name2id(model, mjOBJ_SITE, "tip0");
     mj_forward(model, data);
   }
+  // The harness' read of the first crank tip (x, z: mo2d's x, y) at the state reached: the
+  // kinematics of that state first (mj_step leaves site_xpos at the start of its step).
+  std::array<double, 2> tip() const {
+    mj_kinematics(model, data);
+    const double* p = data->site_xpos + 3 * tip0;
+    return {p[0], p[2]};
+  }
   ~MjRun() {
     mj_deleteData(data);
     mj_deleteModel(model);
@@ -127,7 +154,9 @@ struct MjRun {
 
 // ---- table 1: double four-bar, error against CPU time
 // --------------------------------------------
-void speed_vs_error(bool long_runs) {
+enum class Engines { all, mo2d, mujoco };
+
+void speed_vs_error(bool long_runs, Engines engines) {
   std::printf("\n### Double four-bar, 10 s: error of B0(10 s) against CPU time\n\n");
   std::printf("| engine | setting | error | steps | CPU ms |\n|---|---|---|---|---|\n");
   const Model m = build_model(n_fourbar(2));
@@ -143,30 +172,70 @@ void speed_vs_error(bool long_runs) {
                 to_string(options_for_accuracy(m, o).integrator), setting, e, r.stats.steps,
                 1e3 * r.stats.cpu_seconds);
   };
-  mo2d_row({.integrator = Integrator::dopri5, .rtol = 3e-6, .atol = 3e-6}, "tol 3e-6");
-  mo2d_row({.integrator = Integrator::dopri5, .rtol = 1e-7, .atol = 1e-7}, "tol 1e-7");
-  mo2d_row({.integrator = Integrator::dopri5, .rtol = 1e-9, .atol = 1e-9}, "tol 1e-9");
-  mo2d_row({.integrator = Integrator::rk4, .step = 2e-3}, "h 2e-3");
-  mo2d_row({.integrator = Integrator::cvode_bdf, .rtol = 1e-8, .atol = 1e-8}, "tol 1e-8");
-  // the high-order methods, and what run.accuracy picks (src/forward/accuracy.cpp)
-  mo2d_row({.integrator = Integrator::erk6, .rtol = 1e-5, .atol = 1e-5}, "tol 1e-5");
-  mo2d_row({.integrator = Integrator::erk8, .rtol = 1e-5, .atol = 1e-5}, "tol 1e-5");
-  mo2d_row({.accuracy = 1e-3}, "accuracy 1e-3");
-  mo2d_row({.accuracy = 1e-6}, "accuracy 1e-6");
-  mo2d_row({.accuracy = 1e-5}, "accuracy 1e-5");
-  mo2d_row({.accuracy = 1e-9}, "accuracy 1e-9");
-  for (double h : {6.25e-3, 2e-3, 6.25e-4, 6.25e-5, 6.25e-6}) {
-    if (h < 1e-5 && !long_runs) continue;
-    MjRun r(2, h);
-    const long steps = std::lround(10.0 / h);
-    const double c0 = cpu_seconds();
-    for (long k = 0; k < steps; ++k) mj_step(r.model, r.data);
-    const double cpu = cpu_seconds() - c0;
-    const double* tip = r.data->site_xpos + 3 * r.tip0;  // x, y, z: mo2d's (x, y) is (x, z)
-    const double e = std::hypot(tip[0] - kRefX, tip[2] - kRefY);
-    std::printf("| MuJoCo %d.%d.%d Euler | h %g | %.2e | %ld | %.2f |\n", mj_version() / 100,
-                mj_version() / 10 % 10, mj_version() % 10, h, e, steps, 1e3 * cpu);
+  if (engines != Engines::mujoco) {
+    mo2d_row({.integrator = Integrator::dopri5, .rtol = 3e-6, .atol = 3e-6}, "tol 3e-6");
+    mo2d_row({.integrator = Integrator::dopri5, .rtol = 1e-7, .atol = 1e-7}, "tol 1e-7");
+    mo2d_row({.integrator = Integrator::dopri5, .rtol = 1e-9, .atol = 1e-9}, "tol 1e-9");
+    mo2d_row({.integrator = Integrator::rk4, .step = 2e-3}, "h 2e-3");
+    mo2d_row({.integrator = Integrator::cvode_bdf, .rtol = 1e-8, .atol = 1e-8}, "tol 1e-8");
+    // the high-order methods, and what run.accuracy picks (src/forward/accuracy.cpp)
+    mo2d_row({.integrator = Integrator::erk6, .rtol = 1e-5, .atol = 1e-5}, "tol 1e-5");
+    mo2d_row({.integrator = Integrator::erk8, .rtol = 1e-5, .atol = 1e-5}, "tol 1e-5");
+    // the cheapest runs of issue 33 at 1e-3, 1e-6 and 1e-10 (scripts/instructions.sh counts them)
+    mo2d_row({.integrator = Integrator::erk6, .rtol = 3e-6, .atol = 3e-6}, "tol 3e-6");
+    mo2d_row({.integrator = Integrator::erk8, .rtol = 3e-9, .atol = 3e-9}, "tol 3e-9");
+    mo2d_row({.integrator = Integrator::rk4, .step = 8e-4}, "h 8e-4");
+    mo2d_row({.accuracy = 1e-3}, "accuracy 1e-3");
+    mo2d_row({.accuracy = 1e-6}, "accuracy 1e-6");
+    mo2d_row({.accuracy = 1e-5}, "accuracy 1e-5");
+    mo2d_row({.accuracy = 1e-9}, "accuracy 1e-9");
   }
+  if (engines == Engines::mo2d) return;
+  for (const char* integ : {"Euler", "RK4", "implicit"}) {
+    for (double h : {1e-2, 6.25e-3, 5e-3, 3.125e-3, 2e-3, 6.25e-4, 6.25e-5, 6.25e-6}) {
+      if (h < 1e-5 && !long_runs) continue;
+      MjRun r(2, h, {.integrator = integ, .tuned = true});
+      const long steps = std::lround(10.0 / h);
+      const double c0 = cpu_seconds();
+      for (long k = 0; k < steps; ++k) mj_step(r.model, r.data);
+      const double cpu = cpu_seconds() - c0;
+      const std::array<double, 2> tip = r.tip();
+      const double e = std::hypot(tip[0] - kRefX, tip[1] - kRefY);
+      std::printf("| MuJoCo %d.%d.%d %s, tuned | h %g | %.2e | %ld | %.2f |\n", mj_version() / 100,
+                  mj_version() / 10 % 10, mj_version() % 10, integ, h, e, steps, 1e3 * cpu);
+    }
+  }
+}
+
+// ---- the harness checked: its read of the crank tip against closed-form kinematics
+// -----------------------------------------------------------------------
+// The first crank turns about y at the origin, its tip at (0, 0, 1) in its body: at the joint
+// angle q the tip is (sin q, cos q) in (x, z). After k steps the harness' read (MjRun::tip) must
+// be that position of the state reached (t = k h), to rounding, for every integrator: a read of
+// the kinematics of t - h is off by about |v| h (here ~5e-3).
+int self_test() {
+  int failed = 0, passed = 0;
+  for (const char* integ : {"Euler", "RK4", "implicit"}) {
+    const double h = 6.25e-3;
+    MjRun r(2, h, {.integrator = integ, .tuned = true});
+    const int crank0 = mj_name2id(r.model, mjOBJ_BODY, "crank0");
+    const int qadr = r.model->jnt_qposadr[r.model->body_jntadr[crank0]];
+    for (int k = 0; k < 160; ++k) mj_step(r.model, r.data);  // to t = 1 s
+    const double q = r.data->qpos[qadr];
+    const std::array<double, 2> tip = r.tip();
+    const double dx = tip[0] - std::sin(q), dz = tip[1] - std::cos(q);
+    const double dt = r.data->time - 160 * h;
+    // the harness' error against the one of the closed-form position
+    const double de = std::hypot(tip[0] - kRefX, tip[1] - kRefY) -
+                      std::hypot(std::sin(q) - kRefX, std::cos(q) - kRefY);
+    const bool ok = std::hypot(dx, dz) < 1e-12 && std::abs(dt) < 1e-12 && std::abs(de) < 1e-12;
+    std::printf("%s %s: read (%.15f, %.15f), closed form (%.15f, %.15f) at t = %.6f\n",
+                ok ? "ok  " : "FAIL", integ, tip[0], tip[1], std::sin(q), std::cos(q),
+                r.data->time);
+    ok ? ++passed : ++failed;
+  }
+  std::printf("%d passed, %d failed\n", passed, failed);
+  return failed == 0 ? 0 : 1;
 }
 
 // ---- table 2: N-four-bar, cost per step
@@ -264,6 +333,8 @@ int main(int argc, char** argv) {
   bool long_runs = false;
   int max_n = 400;
   std::string csv;
+  Engines engines = Engines::all;
+  bool self_check = false;
   for (int k = 1; k < argc; ++k) {
     if (std::strcmp(argv[k], "--long") == 0)
       long_runs = true;
@@ -271,14 +342,22 @@ int main(int argc, char** argv) {
       max_n = std::atoi(argv[++k]);
     else if (std::strcmp(argv[k], "--csv") == 0 && k + 1 < argc)
       csv = argv[++k];
+    else if (std::strcmp(argv[k], "--engine") == 0 && k + 1 < argc &&
+             (std::strcmp(argv[k + 1], "mo2d") == 0 || std::strcmp(argv[k + 1], "mujoco") == 0))
+      engines = std::strcmp(argv[++k], "mo2d") == 0 ? Engines::mo2d : Engines::mujoco;
+    else if (std::strcmp(argv[k], "--self-test") == 0)
+      self_check = true;
     else {
-      std::fprintf(stderr, "usage: mo2d_peers_bench [--long] [--max-n N] [--csv FILE]\n");
+      std::fprintf(stderr,
+                   "usage: mo2d_peers_bench [--long] [--max-n N] [--csv FILE] "
+                   "[--engine mo2d|mujoco] [--self-test]\n");
       return 2;
     }
   }
   try {
-    speed_vs_error(long_runs);
-    step_costs(max_n, csv);
+    if (self_check) return self_test();
+    speed_vs_error(long_runs, engines);
+    if (max_n > 0) step_costs(max_n, csv);
   } catch (const std::exception& e) {
     std::fprintf(stderr, "mo2d_peers_bench: %s\n", e.what());
     return 1;
