@@ -51,7 +51,7 @@ void BM_Box2DStep(benchmark::State& state, Factory make, double seconds) {
   for (auto _ : state) {
     for (size_t k = 0; k < motors.size(); ++k)
       set_motor_speed(*motors[k], speed[n * motors.size() + k]);
-    apply_loads(m, w, ex.run.t0 + n * kStep);
+    apply_loads(m, w, ex.run.t0 + n * kStep, kStep);
     w.world->Step(static_cast<float>(kStep), o.velocity_iterations, o.position_iterations);
     if (++n == steps) {
       state.PauseTiming();
