@@ -100,17 +100,17 @@ TEST(ChainPassage, TwentyLoopChainPassesItsFlatPositionOnExplicitIntegrators) {
 // neither scheme is robust (CVODE's own quotients, the scheme before ed2d141, collapse on the 11-
 // and 17-loop chains). Enable when a Newton matrix passes both.
 // Tried on 2026-12-07 (branch i31-bdf, not merged), over n = 11, 17, 20, 30, 40 loops x rtol 1e-6,
-// 1e-8, 1e-10 (atol rtol/100, 1 s): main fails 7 of the 15. (1) The dense velocity projection is not
-// idempotent next to the flat position: its penalty iteration crawls (residual 2e-10 shrinking by
-// 4e-5 per iteration, q1 moved 8e-9 each), so every retry of a step moved the accepted state again
-// and CVODE's error test failed down to 1e-35 s steps; a truncated minimum-norm correction in the
-// crawling directions removes that failure mode, yet 8 of 15 still fail (error test at 1e-12 s
-// steps: the regularized accelerations vary by ~1e3 m/s^2 over Newton-sized state changes). (2) The
-// accelerations at the projected state f(P(y)), with the augmented Lagrangian started from
-// lambda = 0 (a function of the state): 4 of 15 fail (all at rtol 1e-10). (3) Handing the
-// collapsed passage to erk6 from the last output time: 7 of 15 fail (erk6 itself cannot step over
-// the instant from 0.5 ms before it at some tolerances). (4) A damped least-squares Schur solve
-// where the direct solve is refused: 11 to 13 of 15 fail.
+// 1e-8, 1e-10 (atol rtol/100, 1 s): main fails 7 of the 15. (1) The dense velocity projection is
+// not idempotent next to the flat position: its penalty iteration crawls (residual 2e-10 shrinking
+// by 4e-5 per iteration, q1 moved 8e-9 each), so every retry of a step moved the accepted state
+// again and CVODE's error test failed down to 1e-35 s steps; a truncated minimum-norm correction in
+// the crawling directions removes that failure mode, yet 8 of 15 still fail (error test at 1e-12 s
+// steps: the regularized accelerations vary by ~1e3 m/s^2 over Newton-sized state changes). (2)
+// With (1), the accelerations at the projected state f(P(y)), with the augmented Lagrangian started
+// from lambda = 0 (a function of the state): 4 of 15 fail (all at rtol 1e-10). (3) With (1),
+// handing the collapsed passage to erk6 from the last output time: 7 of 15 fail (erk6 itself cannot
+// step over the instant from 0.5 ms before it at some tolerances). (4) A damped least-squares Schur
+// solve where the direct solve is refused: 11 to 13 of 15 fail.
 TEST(ChainPassage, DISABLED_TwentyLoopChainPassesItsFlatPositionOnCvodeBdf) {
   EXPECT_EQ(chain_passage(Integrator::cvode_bdf), "");
 }
