@@ -166,7 +166,7 @@ TEST(ReducedSpring, SlackRopeIsAWarningNamingTheTime) {
   EXPECT_TRUE(run_scene(rope_scene("-2", "tension")).stats.warnings.empty());  // swings below
 }
 
-TEST(ReducedSpring, SparsePathAgreesAndBox2DRefusesClearly) {
+TEST(ReducedSpring, SparsePathAgreesAndBox2DComparesTheRigidLink) {
   const Scene scene = parse_scene(scene_text(), "mass_spring_mass.yaml");
   const Model m = build_scene_model(scene);
   ForwardOptions o = forward_options(scene, m);
@@ -181,12 +181,10 @@ TEST(ReducedSpring, SparsePathAgreesAndBox2DRefusesClearly) {
   BuildOptions b;
   b.reduction = Reduction::none;
   const Model flat = build_scene_model(scene, b);
-  try {
-    crosscheck_forward(flat, initial_state(scene, flat), 0.1);
-    FAIL() << "Box2D accepted a reduced spring";
-  } catch (const Error& e) {
-    EXPECT_NE(std::string(e.what()).find("reduced to a constraint"), std::string::npos) << e.what();
-  }
+  // Box2D compares the spring reduced to a constraint as a rigid distance joint (issue 32;
+  // crosscheck/box2d_loads.cpp): the reduced model's motion, within Box2D's first-order error
+  const ForwardCrosscheck c = crosscheck_forward(flat, initial_state(scene, flat), 0.1);
+  EXPECT_LT(c.relative_position_error, 1e-2) << c.max_position_error;
 }
 
 TEST(ReducedSpring, BadInputIsRefusedAtTheSpring) {
