@@ -37,12 +37,14 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <cstdint>
 #include <cstdio>
 #include <cstdlib>
 #include <limits>
 #include <map>
 #include <numbers>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "metamorphic/generator.hpp"
@@ -64,6 +66,23 @@ constexpr int kSamples = 21;           // samples per run
 constexpr double kBox2dMassRatio = 3;  // Box2D: largest body mass over the smallest
 constexpr double kBox2dSpan = 1;       // Box2D: compared over [0, kBox2dSpan * Mechanism::time]
 constexpr double kBox2dVelocityIterations = 50;
+// Open disagreements of the Box2D relation on seeds 1..300 (default settings), listed so that they
+// stay visible (printed as UNRESOLVED, counted as failures in the table) and the test fails when
+// one of them starts agreeing or another one disagrees. Measured with
+// MO2D_META_SEED=<seed> MO2D_META_COUNT=1 and MO2D_META_BOX2D_STEPS_PER_TAU=640/1280/2560,
+// MO2D_META_BOX2D_VELOCITY_ITERATIONS=50/200 (docs/testing.md).
+constexpr std::pair<std::uint64_t, const char*> kBox2dUnresolved[] = {
+    {172,
+     "Box2D's step: j19.torque RMS error 1.6 % of peak at tau/640, agrees at tau/2560 (first-order "
+     "convergence of Box2D, not a mo2d error)"},
+    {203,
+     "not resolved: five26.j.torque RMS error 1.9 % at tau/640, 3.7 % at tau/1280, 1.1 % at "
+     "tau/2560; 2.8 % with 200 velocity sweeps; the same without the added damper, drag, friction"},
+    {276,
+     "not resolved: j21.torque RMS error 1.5 % at tau/640, 3.0 % at tau/1280, 6.1 % at tau/2560 "
+     "(grows as Box2D's step shrinks: the two models differ); 2.4 % with 200 velocity sweeps; the "
+     "same without the added damper, drag, friction"},
+};
 
 // ---- observations
 // --------------------------------------------------------------------------------
@@ -413,13 +432,21 @@ struct Table {
   // the inverse run's first warning, for the relations that replay it ("" if it warned nothing)
   std::string inverse_warning{};
   void record(const std::string& name, double tol, const Mechanism& m, const Deviation& d,
-              bool replays_inverse = false) {
+              bool replays_inverse = false, const char* unresolved = nullptr) {
     Relation& r = row(name, tol);
     ++r.mechanisms;
     r.checks += d.checks;
     if (!(d.worst <= r.worst)) r.worst = d.worst, r.worst_seed = m.seed, r.where = d.where;
     const bool ok = d.worst <= tol;
     if (!ok) ++r.failures;
+    if (unresolved) {  // a listed open disagreement: reported, and it must still disagree
+      std::printf("UNRESOLVED (seed %llu): %s: deviation %g (%s): %s\n",
+                  static_cast<unsigned long long>(m.seed), name.c_str(), d.worst, d.where.c_str(),
+                  unresolved);
+      EXPECT_FALSE(ok) << name << " now agrees on seed " << m.seed
+                       << ": remove it from the list of open disagreements";
+      return;
+    }
     const bool known = replays_inverse && !inverse_warning.empty();
     if (!ok && known)
       std::printf("REPORTED (seed %llu): %s: deviation %g (%s); the inverse run warned: %.160s\n",
@@ -852,7 +879,10 @@ void check_mechanism(const Mechanism& mech, Table& table) {
   if (verbose)
     std::printf("  Box2D: mass ratio %.3g, %d compared steps, deviation %.3g (%s)\n", mmax / mmin,
                 r.compared_steps, d.worst, d.where.c_str());
-  table.record(box2d, 1.0, mech, d);
+  const char* unresolved = nullptr;
+  for (const auto& [seed, why] : kBox2dUnresolved)
+    if (seed == mech.seed && plant == Plant::none) unresolved = why;
+  table.record(box2d, 1.0, mech, d, false, unresolved);
   box2d_content.count(build_model(variant, {.reduction = Reduction::none}));
 }
 
