@@ -188,6 +188,9 @@ struct Numbering {
 Numbering number_variables(const Flat& flat, const Elements& el, const Reduced& red, Model& m);
 // Reference to element e's coordinates (a body's node, or a fixed ground position).
 NodeRef node_ref(const Model& m, const Elements& el, int e);
+// Angle of a body's first two nodes in the initial configuration (rad); 0 for the ground (body <
+// 0).
+double initial_angle(const Model& m, int body);
 
 // ---- 5. rows ------------------------------------------------------------------------------------
 

@@ -31,12 +31,6 @@ int angle_body(const Model& m, const std::string& prefix, const std::string& nam
       prefix + name);
 }
 
-double initial_angle(const Model& m, int body) {
-  if (body < 0) return 0;
-  const Vec2 d = m.bodies[body].geometry[1] - m.bodies[body].geometry[0];
-  return std::atan2(d.y(), d.x());
-}
-
 void check_ratio(double ratio, const std::string& what, const std::string& name) {
   if (!std::isfinite(ratio) || ratio == 0)
     throw Error(what + ": ratio must be finite and non-zero (got " + std::to_string(ratio) + ")",

@@ -107,13 +107,6 @@ void add_revolute_rows(const Flat& flat, const Elements& el, const Reduced& red,
   }
 }
 
-// Angle of a body's first two nodes in the initial configuration; 0 for the ground.
-double initial_angle(const Model& m, int body) {
-  if (body < 0) return 0.0;
-  const Vec2 d = m.bodies[body].geometry[1] - m.bodies[body].geometry[0];
-  return std::atan2(d.y(), d.x());
-}
-
 // The part of a prismatic joint or pin-in-slot that they share: the slider on its axis.
 Constraint::Slider slider(const AxisJoint& p, int q, const Elements& el, const Model& m) {
   Constraint::Slider d;
@@ -304,6 +297,12 @@ JointReactions add_rows(const Flat& flat, const Elements& el, const Reduced& red
   add_gear_rows(flat, num, m);
   add_user_rows(flat, num, m);
   return out;
+}
+
+double initial_angle(const Model& m, int body) {
+  if (body < 0) return 0.0;
+  const Vec2 d = m.bodies[body].geometry[1] - m.bodies[body].geometry[0];
+  return std::atan2(d.y(), d.x());
 }
 
 }  // namespace mo2d::build
