@@ -36,27 +36,8 @@ namespace mo2d::crosscheck_detail {
 
 namespace {
 
-b2Vec2 to_b2(const Vec2& v) {
-  return b2Vec2(static_cast<float>(v.x()), static_cast<float>(v.y()));
-}
-
 Vec2 from_b2(const b2Vec2& v) {
   return Vec2(v.x, v.y);
-}
-
-Vec2 perp(const Vec2& d) {
-  return Vec2(-d.y(), d.x());
-}
-
-Vec2 geometry_point(const Body& b, int ci, int cj, double gamma, double rho) {
-  Vec2 pi = b.geometry[ci];
-  if (cj < 0) return pi;
-  const Vec2 d = b.geometry[cj] - pi;
-  return pi + gamma * d + rho * perp(d);
-}
-
-b2Body* body_of(const Box2DWorld& w, int body) {
-  return body < 0 ? w.ground : w.bodies[body].body;
 }
 
 // World position of a BodyPoint on Box2D's bodies.

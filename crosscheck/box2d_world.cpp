@@ -9,8 +9,6 @@
 
 namespace mo2d::crosscheck_detail {
 
-namespace {
-
 b2Vec2 to_b2(const Vec2& v) {
   return b2Vec2(static_cast<float>(v.x()), static_cast<float>(v.y()));
 }
@@ -27,6 +25,12 @@ Vec2 geometry_point(const Body& b, int ci, int cj, double gamma, double rho) {
   return pi + gamma * d + rho * perp(d);
 }
 
+b2Body* body_of(const Box2DWorld& w, int body) {
+  return body < 0 ? w.ground : w.bodies[body].body;
+}
+
+namespace {
+
 Vec2 com_velocity(const Body& b, const Eigen::VectorXd& q1) {
   Vec2 vi = node_velocity(b.nodes[b.ci], q1);
   if (b.cj < 0) return vi;
@@ -38,10 +42,6 @@ Vec2 com_velocity(const Body& b, const Eigen::VectorXd& q1) {
 b2Vec2 local_anchor(const Model& m, const Box2DWorld& w, const NodeRef& n) {
   if (n.body < 0) return to_b2(n.fixed);
   return to_b2(m.bodies[n.body].geometry[n.local] - w.bodies[n.body].com_geometry);
-}
-
-b2Body* body_of(const Box2DWorld& w, int body) {
-  return body < 0 ? w.ground : w.bodies[body].body;
 }
 
 bool rotates(const Box2DWorld& w, int body) {

@@ -83,6 +83,14 @@ void set_motor_speed(const JointMap& j, double speed);
 double motor_effort(const JointMap& j, double inv_dt);
 Vec2 reaction_force(const JointMap& j, double inv_dt);
 
+// Small conversions shared by the world's builder and the loads (box2d_world.cpp): a Vec2 as
+// Box2D's float vector; d turned by +90 degrees; the point (nodes ci, cj, gamma, rho; Example 2.6
+// (b)) on a body's geometry; the Box2D body of a mo2d body (the ground for body < 0).
+b2Vec2 to_b2(const Vec2& v);
+Vec2 perp(const Vec2& d);
+Vec2 geometry_point(const Body& b, int ci, int cj, double gamma, double rho);
+b2Body* body_of(const Box2DWorld& w, int body);
+
 // Loads applied each Box2D step (box2d_loads.cpp): mo2d's load code (point_force, torque_value,
 // spring_value, torsional_value, friction_forces, law_value) evaluated on Box2D's own state read
 // back by read_box2d_state, applied with ApplyForce / ApplyTorque (Box2D clears them after each

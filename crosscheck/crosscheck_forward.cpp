@@ -15,7 +15,7 @@ namespace mo2d {
 
 namespace {
 
-std::string num(double v) {  // 4 significant digits, for messages
+std::string num4(double v) {  // 4 significant digits, for messages
   char b[32];
   std::snprintf(b, sizeof b, "%.4g", v);
   return b;
@@ -104,16 +104,16 @@ ForwardCrosscheck crosscheck_forward(const Model& reference_in, const Model& mod
     const double wanted = h * check.max_motion_per_step / fastest.per_step;
     if (!check.refine_step || halvings >= 8)
       throw Error(
-          what + ": the step " + num(h) + " s is too coarse for this motion: " + fastest.what +
-              " turns " + num(fastest.per_step) + " rad in a step at t = " + num(fastest.t) +
-              " s, more than the " + num(check.max_motion_per_step) +
-              " the tolerances hold for (docs/crosscheck.md): use a step <= " + num(wanted) + " s",
+          what + ": the step " + num4(h) + " s is too coarse for this motion: " + fastest.what +
+              " turns " + num4(fastest.per_step) + " rad in a step at t = " + num4(fastest.t) +
+              " s, more than the " + num4(check.max_motion_per_step) +
+              " the tolerances hold for (docs/crosscheck.md): use a step <= " + num4(wanted) + " s",
           model.name, fastest.t);
     const double coarse = h;
     while (h > wanted) h /= 2;
-    r.notes.push_back("Box2D step refined from " + num(coarse) + " to " + num(h) +
-                      " s: " + fastest.what + " turned " + num(fastest.per_step) +
-                      " rad per step at t = " + num(fastest.t) + " s");
+    r.notes.push_back("Box2D step refined from " + num4(coarse) + " to " + num4(h) +
+                      " s: " + fastest.what + " turned " + num4(fastest.per_step) +
+                      " rad per step at t = " + num4(fastest.t) + " s");
   }
   r.step = h;
   detail::RunBudget budget(box2d_budget(what, model.name, initial.t, t1, check));

@@ -28,7 +28,7 @@ using crosscheck_detail::Box2DWorld;
 using crosscheck_detail::JointMap;
 using detail::friction_rate;
 
-std::string num(double v) {  // 6 significant digits, for messages
+std::string num6(double v) {  // 6 significant digits, for messages
   char b[32];
   std::snprintf(b, sizeof b, "%.6g", v);
   return b;
@@ -101,7 +101,7 @@ class ReversalWatch {
     }
     return reversal;
   }
-  void exclude(double t) { times_ += (times_.empty() ? "" : ", ") + num(t); }
+  void exclude(double t) { times_ += (times_.empty() ? "" : ", ") + num6(t); }
   void note(CrosscheckReport& r) const {
     if (!times_.empty())
       r.notes.push_back("a joint with Coulomb friction reverses within the steps at t = " + times_ +
@@ -229,8 +229,8 @@ CrosscheckReport crosscheck_inverse(const Model& reference_in, const Model& simu
   const int skip = settle > 0 ? 0 : std::max(check.skip_steps, 0);
   if (steps - skip < check.min_compared_steps)
     throw Error("Box2D cross-check of '" + simulated.name +
-                    "': " + std::to_string(std::max(steps - skip, 0)) + " steps of " + num(h) +
-                    " s over [" + num(t0) + ", " + num(options.t1) +
+                    "': " + std::to_string(std::max(steps - skip, 0)) + " steps of " + num6(h) +
+                    " s over [" + num6(t0) + ", " + num6(options.t1) +
                     "] s would be compared, fewer than " +
                     std::to_string(check.min_compared_steps) + ": use a smaller step",
                 simulated.name);
@@ -277,14 +277,14 @@ CrosscheckReport crosscheck_inverse(const Model& reference_in, const Model& simu
       const double ds = motors[k]->linear_motor ? s_next - s_now[k] : wrap_angle(s_next - s_now[k]);
       const double moved = std::fabs(ds) / (motors[k]->linear_motor ? simulated.scale : 1.0);
       if (check.max_motion_per_step > 0 && moved > check.max_motion_per_step)
-        throw Error("Box2D cross-check of '" + simulated.name + "': the step " + num(h) +
+        throw Error("Box2D cross-check of '" + simulated.name + "': the step " + num6(h) +
                         " s is too coarse for this motion: joint '" + motors[k]->name + "' moves " +
-                        num(moved) +
+                        num6(moved) +
                         (motors[k]->linear_motor ? " of the mechanism's size" : " rad") +
-                        " in the step at t = " + num(t) + " s, more than the " +
-                        num(check.max_motion_per_step) +
+                        " in the step at t = " + num6(t) + " s, more than the " +
+                        num6(check.max_motion_per_step) +
                         " the tolerances hold for (docs/crosscheck.md): use a step <= " +
-                        num(h * check.max_motion_per_step / moved) + " s",
+                        num6(h * check.max_motion_per_step / moved) + " s",
                     motors[k]->name, t);
       double speed = ds / h;
       if (check.feedback_time > 0)
