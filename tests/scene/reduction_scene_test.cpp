@@ -182,9 +182,11 @@ TEST(ReducedSpring, SparsePathAgreesAndBox2DComparesTheRigidLink) {
   b.reduction = Reduction::none;
   const Model flat = build_scene_model(scene, b);
   // Box2D compares the spring reduced to a constraint as a rigid distance joint (issue 32;
-  // crosscheck/box2d_loads.cpp): the reduced model's motion, within Box2D's first-order error
+  // add_rigid_spring, crosscheck/box2d_world.cpp): the reduced model's motion, within Box2D's
+  // first-order error (measured 1.3e-6 of the size over 0.1 s; with the link 10 % long, 1.7e-3,
+  // which the cross-check's default tolerance of 1e-2 lets pass)
   const ForwardCrosscheck c = crosscheck_forward(flat, initial_state(scene, flat), 0.1);
-  EXPECT_LT(c.relative_position_error, 1e-2) << c.max_position_error;
+  EXPECT_LT(c.relative_position_error, 1e-4) << c.max_position_error;
 }
 
 TEST(ReducedSpring, BadInputIsRefusedAtTheSpring) {
