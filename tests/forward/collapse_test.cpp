@@ -6,7 +6,10 @@
 
 #include <chrono>
 #include <cmath>
+#include <cstdio>
+#include <cstdlib>
 #include <string>
+#include <vector>
 
 #include "forward/forward_run.hpp"
 #include "mo2d/mechanisms.hpp"
@@ -91,28 +94,78 @@ TEST(ChainPassage, TwentyLoopChainPassesItsFlatPositionOnExplicitIntegrators) {
   EXPECT_NE(chain_passage(Integrator::cvode_adams).find("does not project"), std::string::npos);
 }
 
-// OPEN (issue 31, item 2): cvode_bdf does not pass the 20-loop chain's flat position (nor the
-// 40-loop one of the issue): since ed2d141 its Newton matrix there is the difference quotients
-// of the regularized accelerations, and the step collapses to 1e-8 ... 1e-14 s at t = 0.726 s.
-// The exact Jacobian also where the evaluation is regularized passes this chain (408 steps) and
-// the 40-loop one (777 steps over 1 s, 2833 over 10 s), but collapses the double four-bar at rtol
-// 1e-10 (the cross-check's reference run: a step of 5e-27 s at t = 0.714 s), so it was reverted;
-// neither scheme is robust (CVODE's own quotients, the scheme before ed2d141, collapse on the 11-
-// and 17-loop chains). Enable when a Newton matrix passes both.
-// Tried on 2026-12-07 (branch i31-bdf, not merged), over n = 11, 17, 20, 30, 40 loops x rtol 1e-6,
-// 1e-8, 1e-10 (atol rtol/100, 1 s): main fails 7 of the 15. (1) The dense velocity projection is
-// not idempotent next to the flat position: its penalty iteration crawls (residual 2e-10 shrinking
-// by 4e-5 per iteration, q1 moved 8e-9 each), so every retry of a step moved the accepted state
-// again and CVODE's error test failed down to 1e-35 s steps; a truncated minimum-norm correction in
-// the crawling directions removes that failure mode, yet 8 of 15 still fail (error test at 1e-12 s
-// steps: the regularized accelerations vary by ~1e3 m/s^2 over Newton-sized state changes). (2)
-// With (1), the accelerations at the projected state f(P(y)), with the augmented Lagrangian started
-// from lambda = 0 (a function of the state): 4 of 15 fail (all at rtol 1e-10). (3) With (1),
-// handing the collapsed passage to erk6 from the last output time: 7 of 15 fail (erk6 itself cannot
-// step over the instant from 0.5 ms before it at some tolerances). (4) A damped least-squares Schur
-// solve where the direct solve is refused: 11 to 13 of 15 fail.
-TEST(ChainPassage, DISABLED_TwentyLoopChainPassesItsFlatPositionOnCvodeBdf) {
+// The crank tip's height (crank0.B.y) of the n-loop chain after `duration` s, independently: on
+// its parallelogram branch every crank turns by the same angle th from the upright and every
+// coupler translates, so the chain is one pendulum, J th'' = -G cos(th) with J = (n + 1) (1/12 +
+// 1/4) + n (cranks about their pivots, couplers moving at the tips' speed) and G = g ((n + 1) / 2
+// + n) (the centres of mass at half and full height sin th); th(0) = pi/2, th'(0) = -1 rad/s.
+// RK4 at 1e-5 s (its result changes by < 1e-14 when the step is doubled).
+double chain_reference(int n, double duration) {
+  const double G = 9.81 * ((n + 1) * 0.5 + n), J = (n + 1) / 3.0 + n;
+  auto acc = [&](double th) { return -G / J * std::cos(th); };
+  double th = M_PI / 2, w = -1;
+  const long steps = std::lround(duration / 1e-5);
+  const double h = duration / static_cast<double>(steps);
+  for (long k = 0; k < steps; ++k) {
+    const double k1t = w, k1w = acc(th);
+    const double k2t = w + h / 2 * k1w, k2w = acc(th + h / 2 * k1t);
+    const double k3t = w + h / 2 * k2w, k3w = acc(th + h / 2 * k2t);
+    const double k4t = w + h * k3w, k4w = acc(th + h * k3t);
+    th += h / 6 * (k1t + 2 * k2t + 2 * k3t + k4t);
+    w += h / 6 * (k1w + 2 * k2w + 2 * k3w + k4w);
+  }
+  return std::sin(th);
+}
+
+// cvode_bdf on the n-loop chain over `duration` s at rtol (atol rtol / 100): "" or the run's error;
+// the crank tip's final height, the hops' warning and the steps in `out`.
+struct BdfRun {
+  double tip_y = 0;
+  long steps = 0;
+  std::string hops;
+};
+std::string bdf_chain(int n, double duration, double rtol, BdfRun& out) {
+  const Scene scene = parse_scene(chain_scene(n, duration), "chain.yaml");
+  const Model m = build_scene_model(scene);
+  ForwardOptions o = forward_options(scene, m);
+  o.accuracy = 0, o.integrator = Integrator::cvode_bdf, o.rtol = rtol, o.atol = rtol / 100;
+  o.max_steps = 30'000, o.max_seconds = 60, o.error_estimate = ErrorEstimate::off;
+  Trajectory r;
+  const std::string msg = error_of([&] { r = forward_dynamics(m, initial_state(scene, m), o); });
+  if (!msg.empty()) return msg;
+  out.tip_y = r.q0(r.time.size() - 1, m.coordinate("crank0.B.y"));
+  out.steps = r.stats.steps;
+  for (const std::string& w : r.stats.warnings)
+    if (w.find("rk4 at fixed steps") != std::string::npos) out.hops = w;
+  return "";
+}
+
+// cvode_bdf over the 20-loop chain's flat position (issue 31, item 2): its step collapsed there
+// since ed2d141 (1e-8 ... 1e-15 s at t = 0.7206 s) with the Newton matrix of difference quotients
+// where the evaluation is regularized; with the exact Jacobian there, and a collapse handed to rk4
+// (cvode_hop.cpp), it passes within the step budget and lands where erk8 does.
+TEST(ChainPassage, TwentyLoopChainPassesItsFlatPositionOnCvodeBdf) {
   EXPECT_EQ(chain_passage(Integrator::cvode_bdf), "");
+}
+
+// The settings that collapsed before (n loops x rtol: the 11-loop chain at 1e-6 and 1e-10, the
+// double four-bar, n = 2, at 1e-12 over its 10 s and their passages at 0.72, 1.2, 1.9 ... s):
+// every one passes, within the step budget, and ends where the one-pendulum reduction of the chain
+// does (chain_reference)
+TEST(ChainPassage, CvodeBdfPassesAtEveryTolerance) {
+  struct Case {
+    int n;
+    double duration, rtol, bound;  // bound: m, ~10 x the error measured on 2026-12-07
+  };
+  // measured: 1.4e-5, 8.1e-8, 8.1e-10, 5.2e-6 (the double four-bar's ten passages amplify the
+  // error), 2.7e-8 (17 hops by rk4, whose error rtol does not control)
+  for (const Case c : {Case{11, 1, 1e-6, 1e-4}, Case{11, 1, 1e-8, 1e-6}, Case{11, 1, 1e-10, 1e-8},
+                       Case{2, 10, 1e-8, 1e-4}, Case{2, 10, 1e-12, 1e-6}}) {
+    const double ref_y = chain_reference(c.n, c.duration);
+    BdfRun r;
+    EXPECT_EQ(bdf_chain(c.n, c.duration, c.rtol, r), "") << c.n << " loops, rtol " << c.rtol;
+    EXPECT_NEAR(r.tip_y, ref_y, c.bound) << c.n << " loops, rtol " << c.rtol << "; " << r.hops;
+  }
 }
 
 // RunBudget: a step that collapses suddenly (1e-3 s, then 1e-14 s) ends the run after
