@@ -44,44 +44,9 @@ struct CvodeUser {
   std::exception_ptr kept;
   AccelerationJacobian jac;  // the last Newton matrix's d a1 / d (q0, q1)
   MatrixXd energy_rows;      // its energy rows: d rates / d (q0, q1), terms x (n0 + n1)
-  // Singular passages handed to rk4 (cvode_hop.cpp; hop_due): allowed (can_hop), asked for by
-  // the last callback, the recent accepted steps' maximum (s; decaying outside singular windows)
-  // at step count ref_steps, the evaluations in a row with a collapsed step, and the hops made
-  // (the first's time, their steps, the time they covered).
   const ForwardOptions* o = nullptr;
-  bool hop_allowed = false, wants_hop = false;
-  double ref_h = 0, first_hop = 0;
-  long ref_steps = 0, hop_steps = 0, last_regularized = 0, regularized_at = 0;
-  double hop_time = 0;
-  VectorXd y_out;  // y at the last output time (n): where a hop starts
-  double t_last = 0;
-  int tiny_evals = 0, hops = 0;
+  HopWatch hops;  // singular passages handed to rk4 (cvode_hop.hpp)
 };
-
-// A collapse at a singular passage: CVODE's step below kHopRatio of its recent accepted steps for
-// kHopEvaluations evaluations in a row, inside a singular window (a regularized evaluation among
-// the last kHopRecent: ForwardData's solve near a singular configuration). The reference is the
-// recent accepted steps' maximum, decaying by kHopDecay per accepted step outside the windows and
-// held inside them: the 20-loop chain at rtol 1e-8 took thousands of accepted steps shrinking from
-// 1e-6 to 1e-9 s in its window, under a decaying reference a step "like the recent ones". A
-// passage that BDF manages takes steps of 1e-3 to 1e-5 of the recent ones (the double four-bar).
-constexpr double kHopRatio = 1e-3, kHopDecay = 0.97;
-constexpr int kHopEvaluations = 30;
-constexpr long kHopRecent = 100;  // evaluations since a regularized one
-
-bool hop_due(CvodeUser* u, double h, long steps) {
-  if (!u->hop_allowed || !(h > 0)) return false;
-  const long reg = u->d->stats.regularized_evaluations, evals = u->d->stats.rhs_evaluations;
-  if (reg > u->last_regularized) u->last_regularized = reg, u->regularized_at = evals;
-  const bool window = u->last_regularized > 0 && evals - u->regularized_at <= kHopRecent;
-  if (steps > u->ref_steps) {  // the reference is held (no decay) inside a singular window
-    u->ref_h = std::max(h, window ? u->ref_h : u->ref_h * kHopDecay);
-    u->ref_steps = steps;
-  }
-  const bool tiny = h < kHopRatio * u->ref_h && window;
-  u->tiny_evals = tiny ? u->tiny_evals + 1 : 0;
-  return steps >= 10 && u->tiny_evals >= kHopEvaluations;
-}
 
 // The budget is checked at every right-hand side evaluation (a single output interval can take
 // arbitrarily long); when it runs out the evaluation fails unrecoverably and run_cvode rethrows.
@@ -92,8 +57,8 @@ bool budget_ok(CvodeUser* u, const double* y) {
   steps += u->steps_before;
   CVodeGetCurrentStep(u->mem, &h);
   CVodeGetCurrentTime(u->mem, &t);  // the time reached (not the stage's trial time)
-  if (hop_due(u, h, steps)) {       // unrecoverable: CVode returns, advance() hops (cvode_hop.cpp)
-    u->wants_hop = true;
+  if (u->hops.due(h, steps, u->d->stats.regularized_evaluations, u->d->stats.rhs_evaluations)) {
+    u->hops.wanted = true;  // unrecoverable: CVode returns, advance() hops (cvode_hop.cpp)
     return false;
   }
   try {
@@ -329,11 +294,8 @@ void restart(CvodeUser& u, double t, N_Vector y, double t_out, Restarts& r, RunS
   reinit(u, t, y, t_out, r);
 }
 
-// The passage over a collapse at time t by rk4 (cvode_hop.cpp), from the last output time (away
-// from the singular instant) to kHopBeyond recent steps past t, or t_out if sooner; y and t there
-// on return, CVODE restarted there (a collapse again later: another hop).
-constexpr double kHopBeyond = 20;
-
+// The passage over a collapse at time t by rk4 (HopWatch::next_end); y and t at its end on
+// return, CVODE restarted there (a collapse again later: another hop).
 void hop(CvodeUser& u, N_Vector y, double& t, double t_out, Restarts& r, RunStats& stats) {
   const Model& m = *u.m;
   if (!stats.warnings.empty() && stats.warnings.back().starts_with("error in CVODE"))
@@ -341,24 +303,19 @@ void hop(CvodeUser& u, N_Vector y, double& t, double t_out, Restarts& r, RunStat
   double* yd = N_VGetArrayPointer(y);
   long taken = 0;
   CVodeGetNumSteps(u.mem, &taken);
-  const double t_end = std::min(t_out, t + kHopBeyond * u.ref_h);
-  Eigen::Map<VectorXd>(yd, u.y_out.size()) = u.y_out;
-  t = u.t_last;
-  const State from{t, u.y_out.head(m.n0), u.y_out.segment(m.n0, m.n1)};
+  HopWatch& w = u.hops;
+  const double t_end = w.next_end(t, t_out);
+  const State from{w.t_last, w.y_out.head(m.n0), w.y_out.segment(m.n0, m.n1)};
   const HopResult h = hop_over(m, *u.o, from, t_end, u.o->max_seconds - u.budget->elapsed(),
-                               u.o->max_steps - taken - u.steps_before, u.ref_h);
+                               u.o->max_steps - taken - u.steps_before, w.ref_h);
+  Eigen::Map<VectorXd>(yd, w.y_out.size()) = w.y_out;
   Eigen::Map<VectorXd>(yd, m.n0) = h.state.q0;
   Eigen::Map<VectorXd>(yd + m.n0, m.n1) = h.state.q1;
   for (size_t k = 0; k < u.terms.size(); ++k) yd[m.n0 + m.n1 + k] += h.energies[u.terms[k]];
-  if (u.hops++ == 0) u.first_hop = t;
-  u.hop_steps += h.steps;
-  u.hop_time += t_end - t;
+  w.done(h.steps, t_end);
   u.steps_before += h.steps;
-  u.wants_hop = false;
-  u.tiny_evals = 0;
   t = t_end;
-  u.y_out = Eigen::Map<const VectorXd>(yd, u.y_out.size());  // the next hop starts here at most
-  u.t_last = t;
+  w.y_out = Eigen::Map<const VectorXd>(yd, w.y_out.size());  // the next hop starts here at most
   reinit(u, t, y, t_out, r);
 }
 
@@ -372,7 +329,7 @@ int advance(CvodeUser& u, N_Vector y, double t_out, double& t, long max_steps, R
     check_flag(CVodeSetMaxNumSteps(u.mem, std::max(1L, max_steps - taken - u.steps_before)),
                "CVodeSetMaxNumSteps", t);
     const int flag = CVode(u.mem, t_out, y, &t, CV_NORMAL);
-    if (u.wants_hop) {
+    if (u.hops.wanted) {
       hop(u, y, t, t_out, r, stats);
       if (t >= t_out) return CV_TSTOP_RETURN;
       --k;  // CVODE goes on from the hop's end (not a restart of kRestarts)
@@ -429,7 +386,7 @@ void run_cvode(const Model& m, ForwardData& d, const State& s0, const ForwardOpt
   CvodeUser user{&m, &d, VectorXd(m.n0), VectorXd(m.n1), terms, false, {}, &budget, mem, 0, nullptr,
                  {}, {}};
   user.o = &o;
-  user.hop_allowed = bdf && can_hop(m, o);
+  user.hops.allowed = bdf && can_hop(m, o);
   check_flag(CVodeInit(mem, cv_rhs, o.t0, y), "CVodeInit", o.t0);
   check_flag(CVodeSetUserData(mem, &user), "CVodeSetUserData", o.t0);
   check_flag(CVodeSetErrHandlerFn(mem, cv_error_handler, &d.stats), "CVodeSetErrHandlerFn", o.t0);
@@ -467,8 +424,8 @@ void run_cvode(const Model& m, ForwardData& d, const State& s0, const ForwardOpt
   for (int k = 1; k < o.samples; ++k) {
     const double t_out = sample_time(o.t0, o.t1, o.samples, k);
     check_flag(CVodeSetStopTime(mem, t_out), "CVodeSetStopTime", t);
-    user.y_out = Eigen::Map<const VectorXd>(yd, n);
-    user.t_last = t;
+    user.hops.y_out = Eigen::Map<const VectorXd>(yd, n);
+    user.hops.t_last = t;
     const int flag = advance(user, y, t_out, t, o.max_steps, restarts, d.stats);
     long taken = 0;
     CVodeGetNumSteps(mem, &taken);
@@ -515,14 +472,8 @@ void run_cvode(const Model& m, ForwardData& d, const State& s0, const ForwardOpt
         std::string(to_string(o.integrator)) + " restarted " + std::to_string(restarts.count) +
         " time" + (restarts.count > 1 ? "s" : "") + ", the first at t = " + fmt(restarts.first) +
         " s: its error test failed repeatedly on the step after it (a jump of the loads there)");
-  if (user.hops > 0 && d.stats.warnings.size() < 20)
-    d.stats.warnings.push_back(
-        "cvode_bdf's step collapsed next to a singular configuration " + std::to_string(user.hops) +
-        " time" + (user.hops > 1 ? "s" : "") + ", the first at t = " + fmt(user.first_hop) +
-        " s; rk4 at fixed steps (the steps before the collapse) took the "
-        "run over it each time (" +
-        std::to_string(user.hop_steps) + " steps over " + fmt(user.hop_time) +
-        " s, its error not controlled by rtol there), CVODE restarted after");
+  if (user.hops.hops > 0 && d.stats.warnings.size() < 20)
+    d.stats.warnings.push_back(user.hops.warning());
   if (!budget.stall_warning().empty() && d.stats.warnings.size() < 20)
     d.stats.warnings.push_back(budget.stall_warning());
   long v = 0;
