@@ -289,18 +289,24 @@ void bind_runs(py::module_& m) {
   m.def(
       "crosscheck_forward",
       [](const Model& model, const State& initial, const py::object& duration, double step,
-         const py::object& t1) {
+         const py::object& t1, double position_tolerance, double angle_tolerance) {
         CrosscheckOptions c;
         c.step = step;
         const double end = end_time("crosscheck_forward", initial.t, duration, t1, kNoDefault);
-        return crosscheck_dict(crosscheck_forward(model, initial, end, c));
+        return crosscheck_dict(crosscheck_forward(model, initial, end, c), position_tolerance,
+                               angle_tolerance);
       },
       py::arg("model"), py::arg("initial"), py::arg("duration") = py::none(),
       py::arg("step") = 1.0 / 2000, py::kw_only(), py::arg("t1") = py::none(),
+      py::arg("position_tolerance") = kForwardPositionTolerance,
+      py::arg("angle_tolerance") = kForwardAngleTolerance,
       "Cross-check forward dynamics against Box2D from the state `initial` over duration (s) "
       "with Box2D's time step `step` (s); the model must be built with reduction='none'. t1: "
-      "the end time, deprecated (use duration). Returns a dict with 'agree', the worst "
-      "relative errors, 'failures' and the per-channel errors.");
+      "the end time, deprecated (use duration). Returns a dict with 'agree' (the largest "
+      "centre-of-mass error relative to the size within position_tolerance and the largest "
+      "body angle error within angle_tolerance, rad: the defaults of `mo2d crosscheck "
+      "--forward`), 'box2d_cause' (why they disagree when Box2D is the cause, else ''), "
+      "'branch_switch', 'notes', the largest and final errors and their time series.");
   bind_workspace(m);
   bind_extras(m);
 }

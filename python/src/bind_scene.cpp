@@ -115,6 +115,24 @@ CrosscheckReport run_crosscheck(const Scene& scene, double step) {
                             scene.motion, run, check);
 }
 
+// The forward cross-check of `mo2d crosscheck SCENE` for a scene that solves forward
+// (apps/cmd_crosscheck.cpp: forward_check): both engines from the scene's initial state, the
+// scene's efforts and controllers in both, compared at its samples; the step refined unless given.
+ForwardCrosscheck run_crosscheck_forward(const Scene& scene, double step, bool step_given) {
+  const Model model = build_scene_model(scene, {.reduction = Reduction::none});
+  const State initial = initial_state(scene, model);
+  const int samples = scene.run.samples > 0 ? scene.run.samples : 101;
+  const EffortLaws efforts = forward_options(scene, build_scene_model(scene)).efforts;
+  CrosscheckOptions check;
+  check.step = step;
+  check.refine_step = !step_given;
+  check.max_steps = scene.run.max_steps;
+  check.max_seconds = scene.run.max_seconds;
+  check.max_memory = scene.run.max_memory;
+  return crosscheck_forward(model, initial, scene.run.t0 + scene.run.duration, check, samples,
+                            efforts);
+}
+
 const char* solve_name(Solve s) {
   return s == Solve::inverse ? "inverse" : "forward";
 }
@@ -229,20 +247,42 @@ void bind_scene(py::module_& m) {
       "forward dynamics of a scene from its initial state, as `mo2d forward` runs it");
   m.def(
       "crosscheck",
-      [](const SourcedScene& scene, double step) {
+      [](const SourcedScene& scene, const py::object& step, const py::object& forward,
+         double position_tolerance, double angle_tolerance) {
+        const bool step_given = !step.is_none();
+        const double h = step_given ? step.cast<double>() : 1.0 / 2000;
+        const bool fwd =
+            forward.is_none() ? scene.run.solve == Solve::forward : forward.cast<bool>();
+        if (fwd) {
+          ForwardCrosscheck r;
+          {
+            py::gil_scoped_release release;
+            r = run_crosscheck_forward(scene, h, step_given);
+          }
+          return crosscheck_dict(r, position_tolerance, angle_tolerance);
+        }
         CrosscheckReport r;
         {
           py::gil_scoped_release release;
-          r = run_crosscheck(scene, step);
+          r = run_crosscheck(scene, h);
         }
         return crosscheck_dict(r);
       },
-      py::arg("scene"), py::arg("step") = 1.0 / 2000,
-      "Cross-check a scene's inverse dynamics against Box2D, as `mo2d crosscheck` does.\n\n"
-      "Drives the scene's prescribed motion in a Box2D world stepped at `step` (s) and compares "
-      "the joint reactions and efforts. Returns a dict with 'agree' (bool), the worst relative "
-      "errors, 'failures' and the per-channel errors and time series. Raises mo2d.Error when "
-      "the motion does not prescribe every degree of freedom.\n\n"
+      py::arg("scene"), py::arg("step") = py::none(), py::kw_only(),
+      py::arg("forward") = py::none(), py::arg("position_tolerance") = kForwardPositionTolerance,
+      py::arg("angle_tolerance") = kForwardAngleTolerance,
+      "Cross-check a scene against Box2D, as `mo2d crosscheck` does: forward for a scene whose "
+      "run solves forward (or forward=True), else inverse.\n\n"
+      "Inverse: drives the scene's prescribed motion in a Box2D world stepped at `step` (s, "
+      "default 1/2000) and compares the joint reactions and efforts; returns a dict with "
+      "'agree' (bool), the worst relative errors, 'failures' and the per-channel errors and "
+      "time series. Raises mo2d.Error when the motion does not prescribe every degree of "
+      "freedom.\n\n"
+      "Forward: both engines from the scene's initial state under its loads, efforts and "
+      "controllers, compared at its samples (Box2D's step refined from 1/2000 s unless `step` "
+      "is given); returns a dict with 'agree' (the largest centre-of-mass error relative to the "
+      "size within position_tolerance, the largest body angle error within angle_tolerance, "
+      "rad), 'box2d_cause', 'branch_switch', 'notes', and the errors and their time series.\n\n"
       "Example::\n\n"
       "    report = mo2d.crosscheck(mo2d.load_scene('mechanisms/fourbar.yaml'))\n"
       "    report['agree']");

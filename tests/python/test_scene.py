@@ -103,3 +103,17 @@ def test_crosscheck_of_a_scene(mechanisms):
     assert c["agree"], c["failures"]
     assert c["effort_labels"] == ["crank_pivot.torque"]
     assert 0 < c["effort_rms"] < 0.01 and math.isfinite(c["reaction_max"])
+
+
+# A scene that solves forward is cross-checked forward (was: refused, "the model has 1 DOF and
+# 'motion' prescribes 0"), judged by the command line's tolerances, which a caller can tighten.
+def test_crosscheck_of_a_forward_scene(mechanisms):
+    scene = mo2d.load_scene(mechanisms / "slider_crank_control.yaml")
+    c = mo2d.crosscheck(scene)
+    assert c["agree"] and c["box2d_cause"] == "", c
+    assert (c["position_tolerance"], c["angle_tolerance"]) == (1e-2, 2e-2)
+    assert 0 < c["relative_position_error"] < 1e-2 and len(c["time"]) == 201
+    strict = mo2d.crosscheck(scene, position_tolerance=1e-12)
+    assert not strict["agree"]
+    with pytest.raises(mo2d.Error, match="prescribes 0"):
+        mo2d.crosscheck(scene, forward=False)
