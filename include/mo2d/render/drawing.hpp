@@ -52,4 +52,9 @@ struct Drawing {
 Drawing drawing_of(const Model& model, const Motion& motion, const FrameOptions& options,
                    const std::vector<int>& samples);
 
+// Sample `sample` drawn as render_frame draws it, as the text of an SVG image (in memory: e.g. a
+// System's picture in a notebook, _repr_svg_ of the Python package).
+std::string frame_svg(const Model& model, const Motion& motion, int sample,
+                      const FrameOptions& options);
+
 }  // namespace mo2d
