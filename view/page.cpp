@@ -92,7 +92,12 @@ std::vector<int> chosen_samples(int n, int max_frames, int& stride) {
 std::vector<std::string> plotted(const Trajectory& r, const std::vector<std::string>& asked,
                                  const std::vector<std::string>& labels) {
   if (!asked.empty()) {
-    for (const std::string& c : asked) label_index(labels, c, "column");
+    for (const std::string& c : asked)
+      if (std::find(labels.begin(), labels.end(), c) == labels.end())
+        throw Error("unknown column '" + c + "'" + did_you_mean(c, labels) +
+                        ": the columns are the CSV header of the run (" + labels.front() +
+                        (labels.size() > 1 ? ", " + labels[1] : "") + ", ...)",
+                    c);
     return asked;
   }
   if (!r.input_labels.empty()) return r.input_labels;

@@ -38,10 +38,10 @@ struct ViewerOptions {
 
 // The page and what went into it.
 struct ViewerPage {
-  std::string html{};
-  int samples = 0;  // of the run
-  int frames = 0;   // in the page
-  int stride = 1;   // every stride-th sample (and the last)
+  std::string html{};  // the page
+  int samples = 0;     // of the run
+  int frames = 0;      // in the page
+  int stride = 1;      // every stride-th sample (and the last)
   // e.g. "251 of 501 samples in the page (every 2nd and the last; at most 400)", a column not
   // finite at some time
   std::vector<std::string> notes{};

@@ -24,7 +24,7 @@ struct DrawnJoint {
 
 // The pixels of one sample (x right, y down, in the frame of FrameOptions::width x height).
 struct DrawnSample {
-  double time = 0;
+  double time = 0;                         // s
   std::vector<std::vector<Vec2>> hulls{};  // per body: the outline's corners (empty: a block)
   std::vector<Vec2> joints{};              // per joint: the pin's centre, or the block's centre
   std::vector<Vec2> axes{};                // per joint: unit axis (prismatic, slot), else (1, 0)
@@ -33,18 +33,20 @@ struct DrawnSample {
   std::vector<std::pair<Vec2, Vec2>> rails{};
 };
 
+// The drawing of chosen samples of a run (drawing_of): what is drawn, the sizes and colours, and
+// the pixels of each sample.
 struct Drawing {
-  View view{};
-  std::vector<std::string> body_names{};
-  std::vector<Rgb> body_colours{};
+  View view{};                            // world -> pixels, the same for every sample
+  std::vector<std::string> body_names{};  // Model::bodies' names, in order
+  std::vector<Rgb> body_colours{};        // per body: the palette's colour
   std::vector<double> body_widths{};  // pixels, per body (one-node and slotted bodies are wider)
   std::vector<bool> body_has_com{};   // mass > 0: the centre-of-mass symbol is drawn
-  std::vector<DrawnJoint> joints{};
+  std::vector<DrawnJoint> joints{};   // the joints drawn, in the order of DrawnSample::joints
   // the style's sizes in pixels
   double line_width = 1, joint_radius = 1, com_radius = 1, block_half_length = 1,
          block_half_height = 1, slot_width = 1;
-  FrameStyle style{};
-  std::vector<DrawnSample> samples{};
+  FrameStyle style{};                  // the colours (FrameOptions::style)
+  std::vector<DrawnSample> samples{};  // in the order of drawing_of's `samples`
 };
 
 // The drawing of `samples` (indices into the motion) with the view of the whole motion, as
