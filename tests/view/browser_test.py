@@ -1,10 +1,10 @@
 #!/usr/bin/env python3
 """The viewer page in a real browser (ctest view.browser; docs/viewer.md).
 
-    browser_test.py MO2D SCENE OUT_DIR [--every K] [--max-frames N] [--offset-check]
+    browser_test.py MO2D SCENE OUT_DIR [--every K] [--max-frames N] [-- RUN SETTINGS...]
 
 Writes the page of SCENE (`mo2d view`) and the Cairo frames of the same run (`mo2d render --frames
---every K`), loads the page in headless Chromium driven over the DevTools protocol
+--every K`; the run settings after `--`, e.g. --duration 10, given to both), loads the page in headless Chromium driven over the DevTools protocol
 (--remote-debugging-pipe: Debian's python3 only, no package), and fails on:
   - any console error, uncaught exception or log error, and any request that is not a file:
     or data: URL (the page must be self-contained);
@@ -198,9 +198,10 @@ def run(cmd):
 
 
 def main():
-    argv = sys.argv[1:]
-    every, max_frames, offset_check = 50, 400, "--offset-check" in argv
-    argv = [a for a in argv if a != "--offset-check"]
+    argv, run_settings = sys.argv[1:], []
+    if "--" in argv:
+        argv, run_settings = argv[:argv.index("--")], argv[argv.index("--") + 1:]
+    every, max_frames = 50, 400
     if "--every" in argv:
         i = argv.index("--every")
         every = int(argv[i + 1])
@@ -218,8 +219,9 @@ def main():
     shutil.rmtree(out, ignore_errors=True)
     os.makedirs(out)
     page = os.path.join(out, "page.html")
-    said = run([mo2d, "view", scene, "-o", page, "--max-frames", str(max_frames)])
-    run([mo2d, "render", scene, "--frames", "--every", str(every), "--out", os.path.join(out, "cairo")])
+    said = run([mo2d, "view", scene, "-o", page, "--max-frames", str(max_frames)] + run_settings)
+    run([mo2d, "render", scene, "--frames", "--every", str(every), "--out",
+         os.path.join(out, "cairo")] + run_settings)
     frames = sorted(f for f in os.listdir(os.path.join(out, "cairo")) if f[-9:-4].lstrip("_").isdigit())
     print(said.strip())
     print("%d Cairo frames every %d samples" % (len(frames), every))
