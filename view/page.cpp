@@ -177,6 +177,7 @@ ViewerPage viewer_page(const Model& model, const Trajectory& run, const ViewerOp
   if (n == 0) throw Error("viewer: the run has no samples", "time");
   const auto columns = trajectory_columns(run);
   std::vector<std::string> labels;
+  labels.reserve(columns.size());
   for (const auto& c : columns) labels.push_back(c.first);
   const std::vector<std::string> plots = plotted(run, options.columns, labels);
 
