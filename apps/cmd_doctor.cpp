@@ -88,7 +88,7 @@ bool check_core() {
 }
 
 void check_drawing() {
-  std::printf("drawing: demo, render, crosscheck, plot, modes, linearize\n");
+  std::printf("drawing: demo, render, view, crosscheck, plot, modes, linearize\n");
   std::string why;
   const AddDrawingCommand add = load_drawing_module(why);
   std::string where;

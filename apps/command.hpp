@@ -19,6 +19,7 @@ Command add_info_command(CLI::App& app);
 Command add_inverse_command(CLI::App& app);
 Command add_forward_command(CLI::App& app);
 Command add_render_command(CLI::App& app);
+Command add_view_command(CLI::App& app);  // cmd_view.cpp
 Command add_crosscheck_command(CLI::App& app);
 Command add_plot_command(CLI::App& app);
 Command add_modes_command(CLI::App& app);      // cmd_modes.cpp

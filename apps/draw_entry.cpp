@@ -21,6 +21,7 @@ extern "C" __attribute__((visibility("default"))) bool mo2d_add_drawing_command(
   const std::string_view n = name;
   Command (*add)(CLI::App&) = n == "demo"         ? add_demo_command
                               : n == "render"     ? add_render_command
+                              : n == "view"       ? add_view_command
                               : n == "crosscheck" ? add_crosscheck_command
                               : n == "plot"       ? add_plot_command
                               : n == "modes"      ? add_modes_command

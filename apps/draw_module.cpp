@@ -16,7 +16,7 @@ namespace fs = std::filesystem;
 
 constexpr std::string_view kCoreCommands[] = {"info",  "inverse", "forward",
                                               "sweep", "doctor",  "--version"};
-constexpr std::string_view kDrawingCommands[] = {"demo", "render", "crosscheck",
+constexpr std::string_view kDrawingCommands[] = {"demo", "render", "view",     "crosscheck",
                                                  "plot", "modes",  "linearize"};
 
 bool first_argument_in(int argc, char** argv, std::span<const std::string_view> names) {

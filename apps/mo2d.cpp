@@ -34,7 +34,7 @@ int main(int argc, char** argv) {  // NOLINT(bugprone-exception-escape)
     }
     if (!draw)
       std::fprintf(stderr,
-                   "mo2d: note: demo, render, crosscheck, plot, modes and linearize are not "
+                   "mo2d: note: demo, render, view, crosscheck, plot, modes and linearize are not "
                    "available: %s\n",
                    why.c_str());
   }
@@ -56,6 +56,7 @@ int main(int argc, char** argv) {  // NOLINT(bugprone-exception-escape)
   add(add_inverse_command, "inverse");
   add(add_forward_command, "forward");
   add(nullptr, "render");
+  add(nullptr, "view");
   add(nullptr, "crosscheck");
   add(nullptr, "plot");
   add(nullptr, "modes");

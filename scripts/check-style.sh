@@ -69,7 +69,7 @@ mapfile -t units < <(git ls-files "${dirs[@]/%//*.cpp}")
 tidy_start=$SECONDS
 # one log per translation unit; --quiet drops the "N warnings generated" lines
 printf '%s\n' "${units[@]}" | xargs -P "$jobs" -I{} sh -c \
-  'clang-tidy --quiet -p "$1" --header-filter="^$2/(src|include|render|crosscheck|apps)/" "$3" >"$4/$(echo "$3" | tr / _).log" 2>&1' \
+  'clang-tidy --quiet -p "$1" --header-filter="^$2/(src|include|render|view|crosscheck|apps)/" "$3" >"$4/$(echo "$3" | tr / _).log" 2>&1' \
   _ "$build" "$root" {} "$tidy_dir"
 # findings: "file:line:col: warning: text [check]", relative to the root and counted once (a
 # header's are repeated by every unit that includes it); a long function gets its line count

@@ -44,6 +44,7 @@ packages=(
   python3-pandas             # pandas 1.5: Result.to_pandas(), the table of a sweep
   python3-matplotlib         # matplotlib 3.6: the example script of docs/python.md (Agg backend)
   doxygen                    # Doxygen 1.9.4: the API reference (mo2d_docs) and its test docs.api
+  chromium                   # headless Chromium: the viewer page tested in a real browser (view.browser_*)
 )
 
 missing=()

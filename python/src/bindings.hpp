@@ -61,6 +61,7 @@ void bind_results(py::module_& m);  // Model, Result
 void bind_scene(py::module_& m);    // Scene, load_scene, inverse, forward, crosscheck
 void bind_system(py::module_& m);   // System, Law, Motion, build_model, runs
 void bind_render(py::module_& m);   // frames, filmstrips, plots to PNG/SVG/PDF
+void bind_view(py::module_& m);     // the viewer page, _repr_html_ and _repr_svg_ (bind_view.cpp)
 void bind_modes(py::module_& m);    // StateSpace, Mode, Equilibrium, linearize, modes
 
 // A Result from a finished run (adds the model's build warnings in front of the run's).

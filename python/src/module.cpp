@@ -177,5 +177,6 @@ PYBIND11_MODULE(_mo2d, m) {
   bind_scene(m);
   bind_system(m);
   bind_render(m);
+  bind_view(m);
   bind_modes(m);
 }

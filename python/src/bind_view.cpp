@@ -1,0 +1,103 @@
+// The viewer page and pictures in notebooks (mo2d/view.hpp, mo2d/render/drawing.hpp): a Result
+// displays as the viewer page (Result._repr_html_: the page in an iframe's srcdoc, so that its
+// script runs apart from the notebook's), writes it (Result.write_viewer); a System and a Model
+// display as the drawing of their initial configuration (_repr_svg_). The GIL is kept (a drawing
+// may evaluate the model's Python laws).
+#include <pybind11/stl.h>
+
+#include "bindings.hpp"
+#include "mo2d/render/drawing.hpp"
+#include "mo2d/view.hpp"
+
+namespace mo2d::py_bind {
+
+namespace {
+
+ViewerOptions viewer_options(int max_frames, const std::vector<std::string>& columns, int width,
+                             int height) {
+  ViewerOptions o;
+  o.max_frames = max_frames;
+  o.columns = columns;
+  o.frame.width = width;
+  o.frame.height = height;
+  return o;
+}
+
+// The page in an iframe's srcdoc: the attribute's text escaped (& and ").
+std::string iframe(const std::string& page, int width, int height) {
+  std::string srcdoc;
+  srcdoc.reserve(page.size() + page.size() / 16);
+  for (const char c : page) {
+    if (c == '&')
+      srcdoc += "&amp;";
+    else if (c == '"')
+      srcdoc += "&quot;";
+    else
+      srcdoc += c;
+  }
+  return "<iframe style=\"border:0\" width=\"" + std::to_string(width + 360) + "\" height=\"" +
+         std::to_string(height + 420) + "\" sandbox=\"allow-scripts\" srcdoc=\"" + srcdoc +
+         "\"></iframe>";
+}
+
+std::string model_svg(const Model& m) {
+  FrameOptions o;
+  o.width = 480;
+  o.height = 360;
+  return frame_svg(m, single_configuration(m.q0), 0, o);
+}
+
+}  // namespace
+
+void bind_view(py::module_& m) {
+  py::class_<Result> result(m.attr("Result"));
+  result
+      .def(
+          "viewer_html",
+          [](const Result& r, int max_frames, const std::vector<std::string>& columns, int width,
+             int height) {
+            return viewer_page(*r.model, r.trajectory,
+                               viewer_options(max_frames, columns, width, height))
+                .html;
+          },
+          py::arg("max_frames") = 400, py::arg("columns") = std::vector<std::string>{},
+          py::arg("width") = 800, py::arg("height") = 600,
+          "The run's viewer page (as `mo2d view` writes it): one self-contained HTML text that "
+          "plays the run, with play/pause, a time scrubber, zoom and pan, the values of a body "
+          "or joint clicked, and plots of `columns` (CSV labels; default the efforts). At most "
+          "max_frames samples go in (every k-th and the last). Raises mo2d.Error for an "
+          "unknown column.")
+      .def(
+          "write_viewer",
+          [](const Result& r, const std::string& path, int max_frames,
+             const std::vector<std::string>& columns, int width, int height) {
+            write_viewer_page(*r.model, r.trajectory,
+                              viewer_options(max_frames, columns, width, height), path);
+          },
+          py::arg("path"), py::arg("max_frames") = 400,
+          py::arg("columns") = std::vector<std::string>{}, py::arg("width") = 800,
+          py::arg("height") = 600,
+          "Write the run's viewer page (viewer_html) to `path`, atomically: one HTML file that "
+          "opens in any browser, nothing fetched from the network.")
+      .def(
+          "_repr_html_",
+          [](const Result& r) {
+            const ViewerOptions o = viewer_options(400, {}, 800, 600);
+            return iframe(viewer_page(*r.model, r.trajectory, o).html, o.frame.width,
+                          o.frame.height);
+          },
+          "The viewer page in an iframe: how a notebook (Jupyter) shows a Result.");
+  py::class_<System, std::shared_ptr<System>> system(m.attr("System"));
+  system.def(
+      "_repr_svg_", [](const System& s) { return model_svg(build_model(s)); },
+      "The drawing of the system's initial configuration as SVG (build_model, then the frame "
+      "of its assembled q0): how a notebook shows a System. Raises mo2d.Error as build_model "
+      "does.");
+  py::class_<Model, std::shared_ptr<Model>> model(m.attr("Model"));
+  model.def(
+      "_repr_svg_", [](const Model& x) { return model_svg(x); },
+      "The drawing of the model's initial configuration (q0) as SVG: how a notebook shows a "
+      "Model.");
+}
+
+}  // namespace mo2d::py_bind

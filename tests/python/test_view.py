@@ -1,0 +1,91 @@
+"""The viewer page and pictures from Python and in notebooks: a Result displays as the viewer page
+(_repr_html_: the page in an iframe's srcdoc), a System and a Model as the SVG drawing of their
+initial configuration (_repr_svg_). The page in a browser: tests/view/browser_test.py."""
+import html
+import json
+import re
+
+import pytest
+
+import mo2d
+
+
+@pytest.fixture(scope="module")
+def result():
+    from conftest import MECHANISMS
+    return mo2d.inverse(mo2d.load_scene(MECHANISMS / "fourbar.yaml", set={}))
+
+
+def page_data(page):
+    """The run's JSON object of a viewer page."""
+    return json.loads(page.split("const MO2D = ", 1)[1].split(";</script>", 1)[0])
+
+
+def test_a_result_displays_as_its_viewer_page_in_an_iframe(result):
+    shown = result._repr_html_()
+    m = re.fullmatch(r'<iframe [^>]*srcdoc="([^"]*)"></iframe>', shown, re.S)
+    assert m, shown[:200]
+    page = html.unescape(m.group(1))
+    assert page == result.viewer_html()
+    assert page.startswith("<!DOCTYPE html>") and "window.mo2dViewer = api" in page
+    # self-contained: nothing loaded from elsewhere
+    assert not re.search(r"""(src|href)\s*=\s*["']?(https?:)?//""", page), "a reference off the page"
+    assert "http://" not in page and "https://" not in page
+
+
+def test_the_page_draws_the_joints_where_the_run_puts_them(result):
+    """The page's pixels of crank_pin (node crank.A) are the run's crank.A through the frame's
+    view: x right, y down, the view's centre at the image centre."""
+    d = page_data(result.viewer_html())
+    W, H, s, (cx, cy) = d["width"], d["height"], d["scale"], d["centre"]
+    assert (W, H) == (800, 600)
+    j = [x["name"] for x in d["joints"]].index("crank_pin")
+    stride = d["stride"]
+    for f in (0, 7, len(d["t"]) - 1):
+        k = min(f * stride, len(result.t) - 1)
+        assert d["t"][f] == pytest.approx(result.t[k], abs=1e-9)
+        x, y = result["crank.A.x"][k], result["crank.A.y"][k]
+        px, py = d["frames"][f]["J"][2 * j:2 * j + 2]
+        assert px == pytest.approx(W / 2 + s * (x - cx), abs=0.006)
+        assert py == pytest.approx(H / 2 - s * (y - cy), abs=0.006)
+    # the values a click shows, and the plotted efforts
+    assert d["plots"] == ["crank_pivot.torque"]
+    assert d["values"]["crank_pivot.torque"][7] == pytest.approx(
+        result["crank_pivot.torque"][7 * stride], rel=1e-5)
+
+
+def test_the_page_holds_at_most_max_frames_and_says_so(result, tmp_path):
+    n = len(result.t)
+    d = page_data(result.viewer_html(max_frames=50, columns=["crank.angle", "crank_pin.Fx"]))
+    assert len(d["t"]) <= 50 and d["t"][0] == result.t[0] and d["t"][-1] == result.t[-1]
+    assert d["samples"] == n and d["stride"] == (n - 2) // 49 + 1
+    assert any(f"{len(d['t'])} of {n} samples in the page" in note for note in d["notes"])
+    assert d["plots"] == ["crank.angle", "crank_pin.Fx"]
+    path = tmp_path / "run.html"
+    result.write_viewer(str(path), max_frames=50, columns=["crank.angle", "crank_pin.Fx"])
+    assert path.read_text() == result.viewer_html(max_frames=50,
+                                                  columns=["crank.angle", "crank_pin.Fx"])
+    assert not list(tmp_path.glob(".*tmp*")), "a temporary left"
+
+
+def test_an_unknown_column_or_budget_is_an_error(result):
+    with pytest.raises(mo2d.Error, match=r"unknown column 'crank_pivot\.torq'.*crank_pivot\.torque"):
+        result.viewer_html(columns=["crank_pivot.torq"])
+    with pytest.raises(mo2d.Error, match="max_frames is 1, must be >= 2"):
+        result.viewer_html(max_frames=1)
+
+
+def test_a_system_and_a_model_display_as_svg_drawings():
+    s = mo2d.System("pendulum")
+    s.add_ground_node("O", (0, 0))
+    s.add_body("link", nodes={"O": (0, 0), "P": (0.5, 0)}, mass=2.0, com="P")
+    s.add_revolute("pivot", "ground.O", "link.O", actuated=True)
+    s.add_coordinate("link.angle", rate=[("link.w", 1.0)])
+    for svg in (s._repr_svg_(), mo2d.build_model(s)._repr_svg_()):
+        assert svg.startswith("<?xml") and "<svg" in svg and svg.rstrip().endswith("</svg>")
+        assert 'width="360pt"' in svg or 'width="480' in svg, svg[:300]
+    bad = mo2d.System("bad")
+    bad.add_body("link", nodes={"O": (0, 0), "P": (0.5, 0)}, mass=2.0, com="P")
+    bad.add_revolute("pivot", "ground.Q", "link.O")
+    with pytest.raises(mo2d.Error, match="ground.Q"):
+        bad._repr_svg_()
