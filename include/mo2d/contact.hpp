@@ -71,10 +71,10 @@ GapValue contact_gap(const Model& m, const ContactDef& c, const Eigen::VectorXd&
 // One event of a contact run.
 struct ContactEvent {
   enum class Kind { onset, exit, impact, lift_off, zeno } kind = Kind::onset;
-  double t = 0;         // s
-  std::string contact;  // its name
-  double speed = 0;     // approach speed -g' before (m/s): onset, impact, zeno
-  double impulse = 0;   // impact: the impulse P (N s)
+  double t = 0;            // s
+  std::string contact;     // its name
+  double speed = 0;        // approach speed -g' before (m/s): onset, impact, zeno
+  double impulse = 0;      // impact: the impulse P (N s)
   double energy_lost = 0;  // impact: the kinetic energy lost by the whole impact (J)
   double predicted_t = 0;  // zeno: the accumulation time t_inf the impacts converge to (s)
 };
@@ -87,9 +87,11 @@ struct ContactOptions {
   // events in a run before it is refused (a chattering contact)
   int max_events = 20000;
   // Zeno: a rigid contact whose last three impact intervals shrink by a steady ratio r < 1
-  // (within 10 %) and whose remaining accumulation time dt r / (1 - r) is below zeno_time (s),
-  // or whose approach speed is below zeno_speed (m/s), is closed for good (a persistent contact)
-  double zeno_time = 1e-6, zeno_speed = 1e-6;
+  // (within 10 %) and whose remaining accumulation time dt r / (1 - r) is below zeno_time (s;
+  // <= 0: 1e-5 of the run's duration t1 - t0), or whose approach speed is below zeno_speed (m/s),
+  // is closed for good (a persistent contact) after a last, perfectly inelastic impact; the
+  // remaining accumulation (at most zeno_time, bounces of height ~ g zeno_time^2 / 8) is skipped
+  double zeno_time = 0, zeno_speed = 1e-6;
   // the persistent contacts' constraint g'' = -2 w g' - w^2 g holds g at 0 against the drift
   // (w = baumgarte_rate, 1/s; 0: g'' = 0)
   double baumgarte_rate = 0;

@@ -78,7 +78,7 @@ struct ForwardData {
   // n1: the part of f from ForwardOptions::extra_forces, and the power it dissipates (W)
   VectorXd f_extra;
   double extra_dissipation = 0;
-  VectorXd u;  // nu: efforts at t, one per Model::inputs entry
+  VectorXd u;                            // nu: efforts at t, one per Model::inputs entry
   std::vector<CompiledLaw> effort_laws;  // nu: ForwardOptions::efforts compiled (empty: 0)
   VectorXd Bu;                           // n1: B u
   VectorXd rhs;                          // n1: f + B u

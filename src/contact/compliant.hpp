@@ -29,7 +29,8 @@ struct CompliantForce {
 inline CompliantForce lankarani_nikravesh(const ContactLaw& l, double g, double rate, double v0) {
   const double d = -g, dd = -rate;
   const double elastic = l.stiffness * std::copysign(std::pow(std::abs(d), l.exponent), d);
-  const double D = 3 * (1 - l.restitution * l.restitution) / (4 * std::max(v0, l.min_approach_speed));
+  const double D =
+      3 * (1 - l.restitution * l.restitution) / (4 * std::max(v0, l.min_approach_speed));
   double F = elastic * (1 + D * dd);
   if (d > 0 && F < 0) F = 0;  // the surfaces push only
   return {F, (F - elastic) * dd};

@@ -13,7 +13,7 @@
 namespace mo2d::detail {
 namespace {
 
-constexpr double kTouch = 1e3;  // contacts within kTouch tol_g of closing join an impact
+constexpr double kTouch = 1e3;   // contacts within kTouch tol_g of closing join an impact
 constexpr double kSteady = 0.1;  // Zeno: the interval ratios agree within 10 %
 
 }  // namespace
@@ -55,13 +55,15 @@ void ContactRunner::handle(State& s) {
     count_event(s.t, name(i));
     if (mode(i) == ContactMode::compliant) {  // exit
       forces_->mode[k] = ContactMode::open;
+      loosen(i, s.q0);
       events_.push_back({ContactEvent::Kind::exit, s.t, name(i), -g.rate, 0, 0, 0});
     } else if (mode(i) == ContactMode::persistent) {  // lift-off
       forces_->mode[k] = ContactMode::open;
-      loosen(i, g.g);
+      loosen(i, s.q0);
       events_.push_back({ContactEvent::Kind::lift_off, s.t, name(i), -g.rate, 0, 0, 0});
     } else if (law(i).kind == ContactLaw::Kind::compliant) {  // onset
       forces_->mode[k] = ContactMode::compliant;
+      loosen(i, s.q0);
       forces_->v0[k] = -g.rate;
       events_.push_back({ContactEvent::Kind::onset, s.t, name(i), -g.rate, 0, 0, 0});
     } else {
@@ -81,51 +83,58 @@ void ContactRunner::impact(State& s, const std::vector<int>& closing) {
   std::vector<int> set;
   for (int i = 0; i < forces_->size(); ++i) {
     if (law(i).kind != ContactLaw::Kind::rigid) continue;
-    const bool in = std::find(closing.begin(), closing.end(), i) != closing.end() ||
-                    mode(i) == ContactMode::persistent ||
-                    gap_only(m_, forces_->contacts[static_cast<size_t>(i)], s.q0) <= kTouch * tol_g_;
+    const bool in =
+        std::find(closing.begin(), closing.end(), i) != closing.end() ||
+        mode(i) == ContactMode::persistent ||
+        gap_only(m_, forces_->contacts[static_cast<size_t>(i)], s.q0) <= kTouch * tol_g_;
     if (in) set.push_back(i);
   }
   const int k = static_cast<int>(set.size());
   Eigen::MatrixXd J(k, m_.n1);
   Eigen::VectorXd rate(k), e(k);
+  std::vector<double> predicted(static_cast<size_t>(k), 0.0);
+  std::vector<int> candidates;
   std::string names;
   for (int r = 0; r < k; ++r) {
-    const GapValue& g = forces_->gap(set[static_cast<size_t>(r)], s.q0, s.q1);
+    const int i = set[static_cast<size_t>(r)];
+    const GapValue& g = forces_->gap(i, s.q0, s.q1);
     J.row(r) = g.J.transpose();
     rate[r] = g.rate;
-    loosen(set[static_cast<size_t>(r)], g.g);
-    const bool persistent = mode(set[static_cast<size_t>(r)]) == ContactMode::persistent;
-    e[r] = persistent ? 0.0 : law(set[static_cast<size_t>(r)]).restitution;
-    names += (names.empty() ? "'" : ", '") + name(set[static_cast<size_t>(r)]) + "'";
+    loosen(i, s.q0);
+    names += (names.empty() ? "'" : ", '") + name(i) + "'";
+    e[r] = law(i).restitution;
+    // a persistent contact stays closed; one that accumulates impacts (Zeno) or arrives at
+    // (nearly) no speed closes for good: perfectly inelastic
+    bool stays = mode(i) == ContactMode::persistent;
+    if (!stays && rate[r] < 0) {
+      impacts_[static_cast<size_t>(i)].push_back(s.t);
+      stays = -rate[r] <= co_.zeno_speed || zeno(i, s.t, predicted[static_cast<size_t>(r)]);
+    }
+    if (stays) e[r] = 0, candidates.push_back(i);
   }
   const ImpactResult res = newton_impact(m_, s.t, s.q0, s.q1, J, rate, e, names);
   s.q1 = res.q1;
   off_[kDissipated] += res.energy_lost;
-  std::vector<int> candidates;
+  // a candidate that the impact left separating (another contact's impulse lifted it) stays open
+  std::erase_if(candidates, [&](int i) {
+    const auto r = std::find(set.begin(), set.end(), i) - set.begin();
+    return res.rate[r] > co_.zeno_speed;
+  });
   for (int r = 0; r < k; ++r) {
     const int i = set[static_cast<size_t>(r)];
-    if (mode(i) == ContactMode::persistent) {
-      candidates.push_back(i);
-      continue;
-    }
-    if (!(res.impulse[r] > 0) && rate[r] >= 0) continue;  // touching, not hit
-    events_.push_back({ContactEvent::Kind::impact, s.t, name(i), -rate[r], res.impulse[r],
-                       res.energy_lost, 0});
-    impacts_[static_cast<size_t>(i)].push_back(s.t);
-    double predicted = 0;
-    if (std::abs(res.rate[r]) <= co_.zeno_speed || -rate[r] <= co_.zeno_speed ||
-        zeno(i, s.t, predicted)) {
-      if (predicted > 0)
-        events_.push_back({ContactEvent::Kind::zeno, s.t, name(i), -rate[r], 0, 0, predicted});
-      candidates.push_back(i);
-    }
+    if (mode(i) == ContactMode::persistent || (!(res.impulse[r] > 0) && rate[r] >= 0)) continue;
+    events_.push_back(
+        {ContactEvent::Kind::impact, s.t, name(i), -rate[r], res.impulse[r], res.energy_lost, 0});
+    if (predicted[static_cast<size_t>(r)] > 0)
+      events_.push_back({ContactEvent::Kind::zeno, s.t, name(i), -rate[r], 0, 0,
+                         predicted[static_cast<size_t>(r)]});
   }
   settle(s, candidates);
 }
 
 // Zeno: the last three intervals between contact i's impacts shrink by a steady ratio r < 1 and
-// the rest of the geometric series, dt r / (1 - r), is below zeno_time; `predicted` = its sum,
+// the rest of the geometric series, dt r / (1 - r), is below zeno_time (its default: 1e-5 of the
+// run's duration); `predicted` = its sum,
 // the accumulation time.
 bool ContactRunner::zeno(int i, double t, double& predicted) {
   const std::vector<double>& T = impacts_[static_cast<size_t>(i)];
@@ -136,34 +145,20 @@ bool ContactRunner::zeno(int i, double t, double& predicted) {
   const double r1 = d2 / d1, r2 = d3 / d2;
   if (!(r2 < 1 && std::abs(r2 - r1) <= kSteady * r1)) return false;
   const double rest = d3 * r2 / (1 - r2);
-  if (!(rest < co_.zeno_time)) return false;
+  if (!(rest < zeno_time_)) return false;
   predicted = t + rest;
   return true;
 }
 
-// The contacts `candidates` (at rest on their surfaces after an impact, or accumulating impacts)
+// The contacts `candidates` (after an impact that left them at rest on their surfaces: g'+ = 0)
 // held closed as persistent contacts, those whose multipliers are negative released (the most
-// negative first, until all that stay push). A candidate still approaching is stopped by a
-// perfectly inelastic impact first.
+// negative first, until all that stay push).
 void ContactRunner::settle(State& s, std::vector<int> candidates) {
   if (candidates.empty()) return;
-  std::vector<int> approaching;
-  Eigen::MatrixXd J(static_cast<Eigen::Index>(candidates.size()), m_.n1);
-  Eigen::VectorXd rate(J.rows());
-  for (size_t r = 0; r < candidates.size(); ++r) {
-    const GapValue& g = forces_->gap(candidates[r], s.q0, s.q1);
-    J.row(static_cast<Eigen::Index>(r)) = g.J.transpose();
-    rate[static_cast<Eigen::Index>(r)] = g.rate;
-  }
-  if (rate.minCoeff() < 0) {  // the rest of the accumulation: perfectly inelastic
-    const ImpactResult res = newton_impact(m_, s.t, s.q0, s.q1, J, rate,
-                                           Eigen::VectorXd::Zero(J.rows()), name(candidates[0]));
-    s.q1 = res.q1;
-    off_[kDissipated] += res.energy_lost;
-  }
   if (static_cast<int>(candidates.size()) > kMaxPersistent)
     throw Error("contact '" + name(candidates[0]) + "': more than " +
-                    std::to_string(kMaxPersistent) + " persistent contacts at t = " + fmt(s.t) + " s",
+                    std::to_string(kMaxPersistent) + " persistent contacts at t = " + fmt(s.t) +
+                    " s",
                 name(candidates[0]), s.t);
   for (int i : candidates) forces_->mode[static_cast<size_t>(i)] = ContactMode::persistent;
   for (;;) {

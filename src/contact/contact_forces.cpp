@@ -51,8 +51,8 @@ double ContactForces::add(double t, const Eigen::VectorXd& q0, const Eigen::Vect
     if (mode[k] == ContactMode::open) continue;
     const GapValue& g = gap(i, q0, q1);
     if (!std::isfinite(g.g) || !std::isfinite(g.rate))
-      throw Error("contact '" + contacts[k].def.name + "': its gap is not finite at t = " +
-                      fmt(t) + " s (g = " + fmt(g.g) + " m, g' = " + fmt(g.rate) + " m/s)",
+      throw Error("contact '" + contacts[k].def.name + "': its gap is not finite at t = " + fmt(t) +
+                      " s (g = " + fmt(g.g) + " m, g' = " + fmt(g.rate) + " m/s)",
                   contacts[k].def.name, t);
     if (mode[k] == ContactMode::persistent) {
       active_.push_back(i);
@@ -68,8 +68,8 @@ double ContactForces::add(double t, const Eigen::VectorXd& q0, const Eigen::Vect
 
 void ContactForces::persistent(double t, const Eigen::VectorXd& q0, const Eigen::VectorXd& q1,
                                Eigen::VectorXd& f) {
-  using Small = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, 0, kMaxPersistent,
-                              kMaxPersistent>;
+  using Small =
+      Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, 0, kMaxPersistent, kMaxPersistent>;
   using SmallV = Eigen::Matrix<double, Eigen::Dynamic, 1, 0, kMaxPersistent, 1>;
   const int k = static_cast<int>(active_.size());
   // the other forces: the probe computes the model's own again; the compliant contacts' are its
@@ -78,11 +78,10 @@ void ContactForces::persistent(double t, const Eigen::VectorXd& q0, const Eigen:
   for (int i = 0; i < size(); ++i)
     if (mode[static_cast<size_t>(i)] == ContactMode::compliant) {
       const GapValue& g = gaps_[static_cast<size_t>(i)];
-      probe_force_.noalias() +=
-          lankarani_nikravesh(contacts[static_cast<size_t>(i)].def.law, g.g, g.rate,
-                              v0[static_cast<size_t>(i)])
-              .force *
-          g.J;
+      probe_force_.noalias() += lankarani_nikravesh(contacts[static_cast<size_t>(i)].def.law, g.g,
+                                                    g.rate, v0[static_cast<size_t>(i)])
+                                    .force *
+                                g.J;
     }
   probe_->accelerations(t, q0, q1, false);
   a0_ = probe_->a;

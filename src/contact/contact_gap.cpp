@@ -53,7 +53,8 @@ void check_law(const ContactDef& c) {
   }
   if (!(c.radius >= 0 && std::isfinite(c.radius)))
     bad("the radius must be >= 0 (got " + fmt(c.radius) + ")");
-  if (c.target != ContactDef::Target::line && !(c.target_radius > 0 && std::isfinite(c.target_radius)))
+  if (c.target != ContactDef::Target::line &&
+      !(c.target_radius > 0 && std::isfinite(c.target_radius)))
     bad("a circle or hole needs target_radius > 0 (got " + fmt(c.target_radius) + ")");
   if (c.target == ContactDef::Target::hole && !(c.target_radius > c.radius))
     bad("a hole must be larger than the circle in it (target_radius " + fmt(c.target_radius) +

@@ -26,10 +26,10 @@ ContactRunner::ContactRunner(const Model& m, const std::vector<ContactDef>& defs
                     "method at the initial state, before any contact closes)",
                 m.name);
   if (inner_.integrator == Integrator::cvode_adams || inner_.integrator == Integrator::baumgarte)
-    throw Error("contact dynamics of '" + m.name + "': the integrator " +
-                    to_string(inner_.integrator) +
-                    " does not project on the constraints: use dopri5, erk6, erk8, rk4 or cvode_bdf",
-                m.name);
+    throw Error(
+        "contact dynamics of '" + m.name + "': the integrator " + to_string(inner_.integrator) +
+            " does not project on the constraints: use dopri5, erk6, erk8, rk4 or cvode_bdf",
+        m.name);
   if (switches_chains(m) || has_quasi_steady(m))
     throw Error("contact dynamics of '" + m.name +
                     "': inextensible or quasi-steady elements are not supported with contacts yet",
@@ -37,11 +37,11 @@ ContactRunner::ContactRunner(const Model& m, const std::vector<ContactDef>& defs
   inner_.error_estimate = ErrorEstimate::off;
   scale_ = m.scale > 0 ? m.scale : 1.0;
   tol_g_ = kGapTolerance * scale_;
+  zeno_time_ = o.zeno_time > 0 ? o.zeno_time : 1e-5 * (inner_.t1 - inner_.t0);
   std::vector<CompiledContact> cs;
   for (const ContactDef& d : defs) {
     for (const CompiledContact& c : cs)
-      if (c.def.name == d.name)
-        throw Error("contact '" + d.name + "' is defined twice", d.name);
+      if (c.def.name == d.name) throw Error("contact '" + d.name + "' is defined twice", d.name);
     cs.push_back(compile_contact(m, d));
   }
   forces_ = std::make_unique<ContactForces>(m, std::move(cs), inner_, o.baumgarte_rate);
@@ -49,7 +49,7 @@ ContactRunner::ContactRunner(const Model& m, const std::vector<ContactDef>& defs
   impacts_.resize(n);
   step_end_.assign(n, {NAN, NAN, NAN});
   excursion_warned_.assign(n, false);
-  slack_.assign(n, tol_g_);
+  slack_.assign(n, 0.0);
   scratch_f_ = Eigen::VectorXd::Zero(m.n1);
 }
 
@@ -61,7 +61,9 @@ double ContactRunner::condition(int i, double t, const Eigen::VectorXd& q0,
               slack_[static_cast<size_t>(i)]) /
              scale_;
     case ContactMode::compliant:
-      return (tol_g_ - gap_only(m_, forces_->contacts[static_cast<size_t>(i)], q0)) / scale_;
+      return (slack_[static_cast<size_t>(i)] -
+              gap_only(m_, forces_->contacts[static_cast<size_t>(i)], q0)) /
+             scale_;
     case ContactMode::persistent:
       break;
   }
@@ -97,7 +99,8 @@ void ContactRunner::check_excursion(double t, const Eigen::VectorXd& q0,
     const GapValue& g = forces_->gap(i, q0, q1);
     const std::array<double, 3> before = step_end_[k];
     step_end_[k] = {t, g.g, g.rate};
-    if (g.g > 0) slack_[k] = tol_g_;
+    if ((mode(i) == ContactMode::open && g.g > 0) || (mode(i) == ContactMode::compliant && g.g < 0))
+      slack_[k] = 0;
     if (mode(i) != ContactMode::open || excursion_warned_[k] || !(before[0] == t0)) continue;
     const double h = t - t0;
     if (!(before[2] < 0 && g.rate > 0 && before[1] > 0 && g.g > 0)) continue;
@@ -106,14 +109,16 @@ void ContactRunner::check_excursion(double t, const Eigen::VectorXd& q0,
       const double s = j / 16.0;
       const double h00 = (1 + 2 * s) * (1 - s) * (1 - s), h10 = s * (1 - s) * (1 - s);
       const double h01 = s * s * (3 - 2 * s), h11 = s * s * (s - 1);
-      lowest = std::min(lowest, h00 * before[1] + h10 * h * before[2] + h01 * g.g + h11 * h * g.rate);
+      lowest =
+          std::min(lowest, h00 * before[1] + h10 * h * before[2] + h01 * g.g + h11 * h * g.rate);
     }
     if (lowest < -tol_g_) {
       excursion_warned_[k] = true;
       out_.stats.warnings.push_back(
           "contact '" + name(i) + "': its gap may have closed and opened again inside the step " +
           fmt(t0) + " to " + fmt(t) + " s (interpolated low " + fmt(lowest) +
-          " m), unseen by the events (a grazing contact): use a tighter tolerance or a shorter step");
+          " m), unseen by the events (a grazing contact): use a tighter tolerance or a shorter "
+          "step");
     }
   }
 }
@@ -123,8 +128,8 @@ Trajectory ContactRunner::leg(const State& s, double t1, int samples) {
   const long steps_left = static_cast<long>(inner_.max_steps) - out_.stats.steps;
   if (steps_left < 1)
     throw Error("contact dynamics of '" + m_.name + "': the run's step budget (max_steps " +
-                    std::to_string(inner_.max_steps) + ") ran out at t = " + fmt(s.t) + " s after " +
-                    std::to_string(events_.size()) + " contact events",
+                    std::to_string(inner_.max_steps) + ") ran out at t = " + fmt(s.t) +
+                    " s after " + std::to_string(events_.size()) + " contact events",
                 "max_steps", s.t);
   o.max_steps = static_cast<int>(steps_left);
   o.t0 = s.t;

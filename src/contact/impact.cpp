@@ -66,9 +66,9 @@ ImpactResult newton_impact(const Model& m, double t, const Eigen::VectorXd& q0,
   const Eigen::VectorXd q = (Eigen::VectorXd::Ones(k) + e).cwiseProduct(rate);
   ImpactResult out;
   if (!solve_lcp_enumerate(0.5 * (W + W.transpose()), q, out.impulse))
-    throw Error("impact of contact" + std::string(k > 1 ? "s " : " ") + names + " at t = " +
-                    fmt(t) + " s: Newton's restitution has no solution (" + std::to_string(k) +
-                    " contacts; at most " + std::to_string(kMaxImpactContacts) +
+    throw Error("impact of contact" + std::string(k > 1 ? "s " : " ") + names +
+                    " at t = " + fmt(t) + " s: Newton's restitution has no solution (" +
+                    std::to_string(k) + " contacts; at most " + std::to_string(kMaxImpactContacts) +
                     " closing at once are solved)",
                 names, t);
   out.q1 = q1 + X * out.impulse;

@@ -31,14 +31,34 @@ Model gap_scene() {
 std::vector<ContactDef> gap_contacts() {
   using T = ContactDef::Target;
   const ContactLaw l = rigid(0.5);
-  return {{.name = "ball_bar", .point = "ball.C", .radius = 0.1, .target = T::line, .a = "bar.A",
-           .b = "bar.B", .law = l},
-          {.name = "tip_ground", .point = "tip", .radius = 0, .target = T::line, .a = "ground.O",
-           .b = "ground.X", .law = l},
-          {.name = "ball_circle", .point = "ball.C", .radius = 0.1, .target = T::circle,
-           .a = "tip", .target_radius = 0.3, .law = l},
-          {.name = "ball_hole", .point = "ball.C", .radius = 0.1, .target = T::hole, .a = "bar.B",
-           .target_radius = 2.5, .law = l}};
+  return {{.name = "ball_bar",
+           .point = "ball.C",
+           .radius = 0.1,
+           .target = T::line,
+           .a = "bar.A",
+           .b = "bar.B",
+           .law = l},
+          {.name = "tip_ground",
+           .point = "tip",
+           .radius = 0,
+           .target = T::line,
+           .a = "ground.O",
+           .b = "ground.X",
+           .law = l},
+          {.name = "ball_circle",
+           .point = "ball.C",
+           .radius = 0.1,
+           .target = T::circle,
+           .a = "tip",
+           .target_radius = 0.3,
+           .law = l},
+          {.name = "ball_hole",
+           .point = "ball.C",
+           .radius = 0.1,
+           .target = T::hole,
+           .a = "bar.B",
+           .target_radius = 2.5,
+           .law = l}};
 }
 
 }  // namespace

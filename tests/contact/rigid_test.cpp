@@ -22,15 +22,19 @@ std::vector<ContactEvent> of_kind(const ContactRun& r, ContactEvent::Kind k) {
 }
 
 ForwardOptions tight(double t1, int samples) {
-  return {.t0 = 0, .t1 = t1, .samples = samples, .integrator = Integrator::dopri5,
-          .rtol = 1e-12, .atol = 1e-14};
+  return {.t0 = 0,
+          .t1 = t1,
+          .samples = samples,
+          .integrator = Integrator::dopri5,
+          .rtol = 1e-12,
+          .atol = 1e-14};
 }
 
 }  // namespace
 
 // Dropped from h: the first impact at t1 = sqrt(2 h / g) at v1 = g t1; the k-th after it at
-// v1 e^k, each flight 2 v1 e^k / g long; the energy lost at the k-th is (1 - e^2) m (v1 e^k)^2 / 2
-// (its rebound height e^(2k) h).
+// v1 e^k, the flight after it 2 v1 e^(k+1) / g long; the energy lost at the k-th is (1 - e^2) m (v1
+// e^k)^2 / 2 (its rebound height e^(2k) h).
 TEST(RigidContact, BouncingBallTimesSpeedsAndLosses) {
   const double m = 0.3, r = 0.02, h = 1.2, g = 9.81, e = 0.8;
   const Model model = build_model(ball_scene(m, 0, r + h, g));
@@ -47,7 +51,7 @@ TEST(RigidContact, BouncingBallTimesSpeedsAndLosses) {
     EXPECT_NEAR(hits[k].t, t, 1e-9) << "impact " << k;
     EXPECT_NEAR(hits[k].speed, v, 1e-9 * v1) << "impact " << k;
     EXPECT_NEAR(hits[k].energy_lost, 0.5 * m * v * v * (1 - e * e), 1e-9 * m * v1 * v1);
-    t += 2 * v / g;
+    t += 2 * e * v / g;
   }
   // the penetration never exceeds the event tolerance at the samples
   const int iy = run.trajectory.column("ball.C.y");
@@ -69,7 +73,7 @@ TEST(RigidContact, ZenoAccumulationBecomesPersistentContact) {
   ASSERT_EQ(z.size(), 1U);
   const double t1 = std::sqrt(2 * h / g), t_inf = t1 * (1 + e) / (1 - e);
   EXPECT_NEAR(z[0].predicted_t, t_inf, 1e-9);
-  EXPECT_LE(t_inf - z[0].t, o.zeno_time);
+  EXPECT_LE(t_inf - z[0].t, 1e-5 * 3);  // the default zeno_time, 1e-5 of the run
   EXPECT_EQ(of_kind(run, ContactEvent::Kind::lift_off).size(), 0U);
   const Trajectory& t = run.trajectory;
   const int iy = t.column("ball.C.y"), ivy = t.rate_column("ball.C.vy");
@@ -105,8 +109,12 @@ TEST(RigidContact, PendulumHitsAStop) {
   ContactOptions o;
   o.forward = tight(1.5, 16);
   // the stop: the line S1 -> S2 (x = 0), free side x > 0
-  const ContactDef stop{.name = "stop", .point = "rod.B", .target = ContactDef::Target::line,
-                        .a = "ground.S1", .b = "ground.S2", .law = rigid(e)};
+  const ContactDef stop{.name = "stop",
+                        .point = "rod.B",
+                        .target = ContactDef::Target::line,
+                        .a = "ground.S1",
+                        .b = "ground.S2",
+                        .law = rigid(e)};
   const ContactRun run = contact_dynamics(model, {stop}, st, o);
   const std::vector<ContactEvent> hits = of_kind(run, ContactEvent::Kind::impact);
   ASSERT_GE(hits.size(), 2U);
@@ -125,8 +133,12 @@ TEST(RigidContact, TwoBallsConserveMomentum) {
   s.add_body({.name = "a", .nodes = {{"C", {0, 0}}}, .mass = m1});
   s.add_body({.name = "b", .nodes = {{"C", {1, 0}}}, .mass = m2});
   const Model model = build_model(s);
-  const ContactDef c{.name = "ab", .point = "a.C", .radius = r1,
-                     .target = ContactDef::Target::circle, .a = "b.C", .target_radius = r2,
+  const ContactDef c{.name = "ab",
+                     .point = "a.C",
+                     .radius = r1,
+                     .target = ContactDef::Target::circle,
+                     .a = "b.C",
+                     .target_radius = r2,
                      .law = rigid(e)};
   ContactOptions o;
   o.forward = tight(2, 21);
@@ -163,13 +175,17 @@ TEST(RigidContact, RodLandsFlatOnTwoContacts) {
   const Model model = build_model(s);
   std::vector<ContactDef> cs;
   for (const char* tip : {"rod.A", "rod.B"})
-    cs.push_back({.name = std::string("tip") + tip[4], .point = tip,
-                  .target = ContactDef::Target::line, .a = "ground.L", .b = "ground.R",
+    cs.push_back({.name = std::string("tip") + tip[4],
+                  .point = tip,
+                  .target = ContactDef::Target::line,
+                  .a = "ground.L",
+                  .b = "ground.R",
                   .law = rigid(e)});
   ContactOptions o;
   o.forward = tight(0.3, 4);
   const State st = consistent_state(
-      model, {.positions = {}, .velocities = {{"rod.A.vx", 0.0}, {"rod.A.vy", 0.0}, {"rod.w", 0.0}}});
+      model,
+      {.positions = {}, .velocities = {{"rod.A.vx", 0.0}, {"rod.A.vy", 0.0}, {"rod.w", 0.0}}});
   const ContactRun run = contact_dynamics(model, cs, st, o);
   const std::vector<ContactEvent> hits = of_kind(run, ContactEvent::Kind::impact);
   ASSERT_EQ(hits.size(), 2U);
