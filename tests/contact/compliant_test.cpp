@@ -130,7 +130,9 @@ TEST(CompliantContact, EnergyOfTheBouncingBall) {
       worst = std::max(worst, std::abs(E + t.dissipated[k] - E0));
     }
     EXPECT_LT(worst, 1e-8 * E0) << "e = " << e;
-    if (e < 1) EXPECT_GT(t.dissipated[t.time.size() - 1], 0.5 * E0);
+    if (e < 1) {
+      EXPECT_GT(t.dissipated[t.time.size() - 1], 0.5 * E0);
+    }
     EXPECT_LT(energy_balance_error(t), 1e-8 * E0) << "e = " << e;
   }
 }

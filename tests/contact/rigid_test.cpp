@@ -220,3 +220,30 @@ TEST(RigidContact, LcpEnumerationSolvesRandomProblems) {
     EXPECT_LT(std::abs(w.dot(P)), 1e-9 * (1 + P.norm()));
   }
 }
+
+// A pin in a hole of the ground (clearance c = R - r), no gravity, starting at the centre at v:
+// it hits the wall at c / v, crosses the hole (2 c) at e v and hits the opposite wall at
+// c / v + 2 c / (e v), then again after 2 c / (e^2 v).
+TEST(RigidContact, PinRattlesInAHole) {
+  const double R = 0.01, r = 0.009, v = 0.3, e = 0.7, c = R - r;
+  System s("pin");
+  s.add_ground_node("H", {0, 0});
+  s.add_body({.name = "pin", .nodes = {{"C", {0, 0}}}, .mass = 0.1});
+  const Model model = build_model(s);
+  const ContactDef hole{.name = "clearance",
+                        .point = "pin.C",
+                        .radius = r,
+                        .target = ContactDef::Target::hole,
+                        .a = "ground.H",
+                        .target_radius = R,
+                        .law = rigid(e)};
+  ContactOptions o;
+  o.forward = tight(0.1, 11);
+  const ContactRun run = contact_dynamics(model, {hole}, state_of(model, {{"pin.C.vx", v}}), o);
+  const std::vector<ContactEvent> hits = of_kind(run, ContactEvent::Kind::impact);
+  ASSERT_GE(hits.size(), 3U);
+  EXPECT_NEAR(hits[0].t, c / v, 1e-12);
+  EXPECT_NEAR(hits[1].t, c / v + 2 * c / (e * v), 1e-12);
+  EXPECT_NEAR(hits[2].t, c / v + 2 * c / (e * v) + 2 * c / (e * e * v), 1e-12);
+  EXPECT_NEAR(hits[2].speed, e * e * v, 1e-12);
+}
