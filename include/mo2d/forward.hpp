@@ -139,6 +139,14 @@ struct ForwardOptions {
   // Input efforts, one law per Model::inputs entry (missing or empty = zero): a function of time
   // (open loop), or of time and the state (mo2d/law.hpp: a feedback law, e.g. pd_control).
   EffortLaws efforts{};
+  // Generalized forces of a stage above forward dynamics (contact, mo2d/contact.hpp) at every
+  // evaluation: the function adds its forces (n1, N or N m per quasi-velocity) to `f` and returns
+  // the part of their power that they dissipate (W, >= 0). Their power f . q1 plus that part is
+  // counted in work.loads and that part in energy.dissipated, so the energy balance covers them.
+  // It must not allocate (it runs per evaluation). cvode_bdf takes CVODE's difference quotients
+  // for its Newton matrix when it is set (the exact Jacobian does not know these forces).
+  std::function<double(double t, const VectorXd& q0, const VectorXd& q1, VectorXd& f)>
+      extra_forces{};
   // Stop early when this function of the state changes sign (root finding between steps).
   std::function<double(double t, const VectorXd& q0, const VectorXd& q1)> stop_when{};
   // Warn where (sigma_min / sigma_max)^2 of the dimensionless constraint Jacobian (columns scaled

@@ -75,7 +75,10 @@ struct ForwardData {
   VectorXd b;  // m1: right-hand side of A q1 = b
   VectorXd c;  // m1: A a1 = c (minus alpha_B (A q1 - b) with Baumgarte's feedback)
   VectorXd f;  // n1: applied generalized forces (gravity, forces, torques, springs, dampers)
-  VectorXd u;  // nu: efforts at t, one per Model::inputs entry
+  // n1: the part of f from ForwardOptions::extra_forces, and the power it dissipates (W)
+  VectorXd f_extra;
+  double extra_dissipation = 0;
+  VectorXd u;                            // nu: efforts at t, one per Model::inputs entry
   std::vector<CompiledLaw> effort_laws;  // nu: ForwardOptions::efforts compiled (empty: 0)
   VectorXd Bu;                           // n1: B u
   VectorXd rhs;                          // n1: f + B u

@@ -408,7 +408,8 @@ void run_cvode(const Model& m, ForwardData& d, const State& s0, const ForwardOpt
     LS_guard.reset(LS);
     check_flag(CVodeSetLinearSolver(mem, LS, A), "CVodeSetLinearSolver", o.t0);
     // joint friction (iterated with the reactions) is not differentiated: difference quotients
-    if (o.exact_jacobian && m.frictions.empty())
+    // nor are the forces of a stage above (extra_forces)
+    if (o.exact_jacobian && m.frictions.empty() && !o.extra_forces)
       check_flag(CVodeSetJacFn(mem, cv_jac), "CVodeSetJacFn", o.t0);
     check_flag(CVodeSetProjFn(mem, cv_proj), "CVodeSetProjFn", o.t0);
   } else {

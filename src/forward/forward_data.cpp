@@ -48,6 +48,7 @@ void init_vectors(ForwardData& d) {
   d.B = input_matrix(d.m);
   d.b = d.c = d.r1 = d.lambda = d.lam_ls = d.ls_d = VectorXd::Zero(d.m.m1);
   d.f = d.Bu = d.rhs = d.a = d.ap = d.tmp0 = d.tmp1 = d.dq1 = d.w = VectorXd::Zero(d.m.n1);
+  d.f_extra = VectorXd::Zero(d.m.n1);
   d.ls_x = d.ls_r = VectorXd::Zero(d.m.n1);
   d.u = VectorXd::Zero(d.m.n_inputs());
   d.effort_laws.resize(d.m.n_inputs());
@@ -238,6 +239,11 @@ void ForwardData::load(double t, const VectorXd& q0, const VectorXd& q1, bool ba
   body_applied(m, q0, q1, t, local);
   f.setZero();
   scatter_local(m, local, f);
+  if (o.extra_forces) {  // a stage above (contact): its forces and their dissipation
+    f_extra.setZero();
+    extra_dissipation = o.extra_forces(t, q0, q1, f_extra);
+    f += f_extra;
+  }
 }
 
 // a and lambda from rhs = f + B u (+ the joint friction) by the options' formulation; checks

@@ -105,7 +105,10 @@ class RkDriver {
       if (held_) held_end_ = save_held(m_);  // the accepted step's (interpolations move them)
       if (o_.stop_when) {
         const double g = event(t + used, y_new);
-        if ((g_prev < 0) != (g < 0) && g_prev != 0) {
+        // a step that ends exactly on a root (g == 0) is an event there: taken as no sign change,
+        // its g_prev = 0 hid every later crossing (a ball dropped 1 mm at 1 m/s with a first step
+        // of 1 ms fell through the ground: tests/contact/compliant_test.cpp)
+        if (g_prev != 0 && (g == 0 || (g_prev < 0) != (g < 0))) {
           locate_event(t, y, used, g_prev, g, y_new, rec, k);
           return;
         }

@@ -37,6 +37,12 @@ void energy_rates(ForwardData& d, double t, const VectorXd& q0, const VectorXd& 
   rates[kDissipated] = damping_power(d.m, q0, q1);
   // joint friction (its values at this evaluation) dissipates -F v >= 0
   if (!d.m.frictions.empty()) rates[kDissipated] -= friction_power(d.m, d.friction, q1);
+  // the forces of a stage above (ForwardOptions::extra_forces): their power, and what they
+  // dissipate
+  if (d.o.extra_forces) {
+    rates[kLoadWork] += d.f_extra.dot(q1) + d.extra_dissipation;
+    rates[kDissipated] += d.extra_dissipation;
+  }
 }
 
 // An integrator that does not project (cvode_adams, baumgarte) cannot hold the constraints

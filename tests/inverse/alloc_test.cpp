@@ -26,6 +26,8 @@
 #include <cstdlib>
 #include <new>
 
+#include "contact/contact_forces.hpp"
+#include "mo2d/contact.hpp"
 #include "mo2d/forward.hpp"
 #include "mo2d/forward_data.hpp"
 #include "mo2d/inverse.hpp"
@@ -411,6 +413,66 @@ TEST(NoAllocation, ForwardAccelerationsSparse) {
   expect_none(slider,
               mo2d::consistent_state(slider, {.positions = {}, .velocities = {{"crank.w", 2.0}}}),
               "slider-crank");
+}
+
+// The contacts' forces (src/contact/contact_forces.hpp) in every evaluation of a contact run: a
+// compliant contact while closed (its gap on Jets, the Lankarani-Nikravesh law) and a persistent
+// rigid one (its multiplier from the probe workspace's evaluations and a fixed-size LU).
+TEST(NoAllocation, ContactForces) {
+  mo2d::System sys("contacts");
+  sys.add_ground_node("O", {0, 0});
+  sys.add_ground_node("S1", {0, 1});
+  sys.add_ground_node("S2", {0, -2});
+  sys.add_ground_node("L", {-5, -1});
+  sys.add_ground_node("R", {5, -1});
+  sys.add_body({.name = "rod",
+                .nodes = {{"O", {0, 0}}, {"B", {0, -0.8}}},
+                .mass = 2,
+                .inertia = 0.1,
+                .com = mo2d::CenterOfMass::between("O", "B", 0.5)});
+  sys.add_revolute({.name = "pivot", .node_a = "ground.O", .node_b = "rod.O"});
+  sys.add_body({.name = "ball", .nodes = {{"C", {2, -0.9001}}}, .mass = 1});
+  sys.set_gravity({1, -9.81});  // presses the rod's tip on the stop x = 0 from x < 0
+  const mo2d::Model model = mo2d::build_model(sys);
+  mo2d::ContactLaw soft, hard;
+  soft.stiffness = 1e6;
+  soft.restitution = 0.8;
+  hard.kind = mo2d::ContactLaw::Kind::rigid;
+  std::vector<mo2d::detail::CompiledContact> cs = {
+      mo2d::detail::compile_contact(model, {.name = "floor",
+                                            .point = "ball.C",
+                                            .radius = 0.1,
+                                            .a = "ground.L",
+                                            .b = "ground.R",
+                                            .law = soft}),
+      mo2d::detail::compile_contact(
+          model,
+          {.name = "stop", .point = "rod.B", .a = "ground.S2", .b = "ground.S1", .law = hard})};
+  mo2d::ForwardOptions o{.integrator = mo2d::Integrator::dopri5};
+  mo2d::detail::ContactForces forces(model, std::move(cs), o, 0.0);
+  forces.mode = {mo2d::detail::ContactMode::compliant, mo2d::detail::ContactMode::persistent};
+  forces.v0 = {0.5, 0};
+  o.extra_forces = [&forces](double t, const Eigen::VectorXd& q0, const Eigen::VectorXd& q1,
+                             Eigen::VectorXd& f) { return forces.add(t, q0, q1, f); };
+  mo2d::ForwardData data(model, o);
+  const mo2d::State s = mo2d::consistent_state(
+      model,
+      {.positions = {}, .velocities = {{"rod.w", 0.0}, {"ball.C.vx", 0.0}, {"ball.C.vy", -0.3}}});
+  const Eigen::VectorXd u = Eigen::VectorXd::Zero(model.n_inputs());
+  mo2d::forward_accelerations(model, data, 0.0, s.q0, s.q1, u);
+  Counts c;
+  {
+    CountAllocations scope;
+    for (int k = 0; k < 100; ++k) mo2d::forward_accelerations(model, data, 1e-3 * k, s.q0, s.q1, u);
+    c = scope.stop();
+  }
+  EXPECT_EQ(c.news, 0) << "operator new calls in 100 evaluations";
+  EXPECT_EQ(c.mallocs, 0) << "malloc/calloc/realloc calls in 100 evaluations";
+  if (c.news != 0 || c.mallocs != 0) print_traces();
+  // the tip held on the stop (lambda = the pendulum's push, > 0), the ball pushed up
+  EXPECT_GT(forces.lambda[1], 0);
+  EXPECT_LT(std::abs(data.a[model.rate("ball.C.vy")] + 9.81), 1e3);
+  EXPECT_GT(data.a[model.rate("ball.C.vy")], -9.81);
 }
 
 }  // namespace

@@ -1,0 +1,113 @@
+#pragma once
+// Contact and impact (issue 35; docs/contact.md): unilateral contacts between a point or a circle
+// on a body and a line or a circle on another body or the ground, and forward dynamics with them.
+//
+// Each contact has a signed gap g(q0) (> 0 open, < 0 penetrating; src/contact/<kind>.hpp give it
+// with its gradient), its rate g' = J q1 and, along the motion, g'' = J a1 + (J' q1). Two laws:
+//  - compliant (Lankarani and Nikravesh 1990): while g < 0, with the penetration d = -g,
+//      F = K d^n (1 + 3 (1 - e^2) / 4 * d' / v0),   v0 = the approach speed -g' at the onset,
+//    a force F >= 0 along the gap's gradient (generalized force F J^T);
+//  - rigid (g >= 0, lambda >= 0, lambda g = 0) with Newton's restitution: when contacts close, the
+//    velocities jump, v+ = v- + G J^T P (G the constrained compliance: [M A^T; A 0]^-1's top
+//    block), with impulses P >= 0 and g'+ + e g'- >= 0 complementary to them (a linear
+//    complementarity problem, solved exactly by enumerating the active sets); a contact whose
+//    approach speed vanishes, or whose impacts accumulate (Zeno), stays closed as an active
+//    constraint g'' = 0 whose multiplier lambda is watched: it opens where lambda reaches 0.
+// Every change (an onset, an exit, an impact, a lift-off, a Zeno accumulation) is an event located
+// by the integrator's root finding (ForwardOptions::stop_when), so no step passes over it.
+#include <string>
+#include <vector>
+
+#include "mo2d/forward.hpp"
+#include "mo2d/model.hpp"
+#include "mo2d/trajectory.hpp"
+
+namespace mo2d {
+
+// The contact law (see the file's description).
+struct ContactLaw {
+  enum class Kind { compliant, rigid } kind = Kind::compliant;
+  // compliant: stiffness K (N/m^n) and exponent n (3/2: Hertz's, for spheres and cylinders in
+  // point contact)
+  double stiffness = 0, exponent = 1.5;
+  // coefficient of restitution e in [0, 1]: Newton's for rigid, the target of the damping for
+  // compliant
+  double restitution = 1;
+  // compliant: the approach speed v0 below which the damping uses this floor instead (m/s): a
+  // contact that closes at (nearly) zero speed would get an unbounded damping coefficient
+  double min_approach_speed = 1e-6;
+};
+
+// A contact: a point or a circle (radius > 0) around a point of a body, against a line or a
+// circle of another body or of the ground. Points are named like the rest of mo2d: a body node
+// ("ball.C"), a ground node ("ground.O") or a named point (System::add_point).
+struct ContactDef {
+  // the contact's name (in the events and warnings)
+  std::string name{};
+  // the moving point and the radius of the circle around it (m; 0: a point)
+  std::string point{};
+  double radius = 0;
+  // What it touches: a line through a and b (the free side is the left of a -> b: the normal
+  // z x (b - a) / |b - a| points out of the obstacle), a circle around a of radius
+  // `target_radius` touched from outside, or a hole: the circle is inside it (a pin in a hole
+  // with the clearance target_radius - radius > 0).
+  enum class Target { line, circle, hole } target = Target::line;
+  std::string a{}, b{};
+  double target_radius = 0;
+  ContactLaw law{};
+};
+
+// The gap of a contact at a state: g (m), g' = J q1 (m/s), J' q1 (m/s^2: g'' = J a1 + J' q1),
+// and J (n1, the gradient of g in the node coordinates; 0 for rotation rates).
+struct GapValue {
+  double g = 0, rate = 0, curvature = 0;
+  Eigen::VectorXd J{};
+};
+// The gap of contact c of model m at (q0, q1). Throws Error naming the contact for an unknown
+// point, a line of zero length, or a circle contact at coincident centres.
+GapValue contact_gap(const Model& m, const ContactDef& c, const Eigen::VectorXd& q0,
+                     const Eigen::VectorXd& q1);
+
+// One event of a contact run.
+struct ContactEvent {
+  enum class Kind { onset, exit, impact, lift_off, zeno } kind = Kind::onset;
+  double t = 0;            // s
+  std::string contact;     // its name
+  double speed = 0;        // approach speed -g' before (m/s): onset, impact, zeno
+  double impulse = 0;      // impact: the impulse P (N s)
+  double energy_lost = 0;  // impact: the kinetic energy lost by the whole impact (J)
+  double predicted_t = 0;  // zeno: the accumulation time t_inf the impacts converge to (s)
+};
+
+// The settings of a contact run: the forward options (integrator, tolerances, output times, ...;
+// stop_when and extra_forces are the contact stage's own and must be empty), and the contact
+// stage's limits.
+struct ContactOptions {
+  ForwardOptions forward{};
+  // events in a run before it is refused (a chattering contact)
+  int max_events = 20000;
+  // Zeno: a rigid contact whose last three impact intervals shrink by a steady ratio r < 1
+  // (within 10 %) and whose remaining accumulation time dt r / (1 - r) is below zeno_time (s;
+  // <= 0: 1e-5 of the run's duration t1 - t0), or whose approach speed is below zeno_speed (m/s),
+  // is closed for good (a persistent contact) after a last, perfectly inelastic impact; the
+  // remaining accumulation (at most zeno_time, bounces of height ~ g zeno_time^2 / 8) is skipped
+  double zeno_time = 0, zeno_speed = 1e-6;
+  // the persistent contacts' constraint g'' = -2 w g' - w^2 g holds g at 0 against the drift
+  // (w = baumgarte_rate, 1/s; 0: g'' = 0)
+  double baumgarte_rate = 0;
+};
+
+// A contact run: the trajectory (kind forward; the impacts' energy loss in energy.dissipated) and
+// its events in order.
+struct ContactRun {
+  Trajectory trajectory;
+  std::vector<ContactEvent> events;
+};
+
+// Forward dynamics of m from `initial` with the contacts (see the file's description). Throws
+// Error naming the contact and the time for a contact that starts closed beyond its tolerance, a
+// non-finite gap, an impact problem without a solution, chattering (more than max_events).
+ContactRun contact_dynamics(const Model& m, const std::vector<ContactDef>& contacts,
+                            const State& initial, const ContactOptions& options = {});
+
+}  // namespace mo2d

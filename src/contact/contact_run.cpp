@@ -1,0 +1,216 @@
+// The event-driven contact run: legs between events (contact_run.hpp), and contact_dynamics.
+#include "contact/contact_run.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+#include "forward/chain_log.hpp"
+#include "mo2d/error.hpp"
+#include "mo2d/quasi_steady.hpp"
+#include "run/format.hpp"
+#include "run/time_grid.hpp"
+
+namespace mo2d::detail {
+
+ContactRunner::ContactRunner(const Model& m, const std::vector<ContactDef>& defs,
+                             const ContactOptions& o)
+    : m_(m), co_(o), inner_(o.forward) {
+  if (inner_.stop_when || inner_.extra_forces)
+    throw Error("contact dynamics of '" + m.name +
+                    "': the forward options' stop_when and extra_forces are the contact stage's "
+                    "own (leave them empty)",
+                m.name);
+  if (inner_.accuracy > 0)
+    throw Error("contact dynamics of '" + m.name +
+                    "': name an integrator and its tolerances (an accuracy asked for chooses the "
+                    "method at the initial state, before any contact closes)",
+                m.name);
+  if (inner_.integrator == Integrator::cvode_adams || inner_.integrator == Integrator::baumgarte)
+    throw Error(
+        "contact dynamics of '" + m.name + "': the integrator " + to_string(inner_.integrator) +
+            " does not project on the constraints: use dopri5, erk6, erk8, rk4 or cvode_bdf",
+        m.name);
+  if (switches_chains(m) || has_quasi_steady(m))
+    throw Error("contact dynamics of '" + m.name +
+                    "': inextensible or quasi-steady elements are not supported with contacts yet",
+                m.name);
+  inner_.error_estimate = ErrorEstimate::off;
+  scale_ = m.scale > 0 ? m.scale : 1.0;
+  tol_g_ = kGapTolerance * scale_;
+  zeno_time_ = o.zeno_time > 0 ? o.zeno_time : 1e-5 * (inner_.t1 - inner_.t0);
+  std::vector<CompiledContact> cs;
+  for (const ContactDef& d : defs) {
+    for (const CompiledContact& c : cs)
+      if (c.def.name == d.name) throw Error("contact '" + d.name + "' is defined twice", d.name);
+    cs.push_back(compile_contact(m, d));
+  }
+  forces_ = std::make_unique<ContactForces>(m, std::move(cs), inner_, o.baumgarte_rate);
+  const size_t n = forces_->contacts.size();
+  impacts_.resize(n);
+  step_end_.assign(n, {NAN, NAN, NAN});
+  excursion_warned_.assign(n, false);
+  slack_.assign(n, 0.0);
+  scratch_f_ = Eigen::VectorXd::Zero(m.n1);
+}
+
+double ContactRunner::condition(int i, double t, const Eigen::VectorXd& q0,
+                                const Eigen::VectorXd& q1) {
+  switch (mode(i)) {
+    case ContactMode::open:
+      return (gap_only(m_, forces_->contacts[static_cast<size_t>(i)], q0) +
+              slack_[static_cast<size_t>(i)]) /
+             scale_;
+    case ContactMode::compliant:
+      return (slack_[static_cast<size_t>(i)] -
+              gap_only(m_, forces_->contacts[static_cast<size_t>(i)], q0)) /
+             scale_;
+    case ContactMode::persistent:
+      break;
+  }
+  (void)t;
+  (void)q1;
+  return forces_->lambda[i] / std::max(lambda_ref_, 1e-300);
+}
+
+double ContactRunner::event(double t, const Eigen::VectorXd& q0, const Eigen::VectorXd& q1) {
+  bool persistent = false;
+  for (int i = 0; i < forces_->size(); ++i) persistent |= mode(i) == ContactMode::persistent;
+  if (persistent) {  // the multipliers at this state
+    scratch_f_.setZero();
+    forces_->add(t, q0, q1, scratch_f_);
+    lambda_ref_ = std::max(lambda_ref_, forces_->lambda.cwiseAbs().maxCoeff());
+  }
+  if (t > last_step_t_) check_excursion(t, q0, q1);
+  double c = 1e300;
+  for (int i = 0; i < forces_->size(); ++i) c = std::min(c, condition(i, t, q0, q1));
+  return c;
+}
+
+// A call at a time later than any before is a step's end (the root finding's tries lie inside
+// the last step): an open contact whose gap is positive at both ends of a step but whose cubic
+// Hermite interpolant from (g, g') at the ends dips below -tol_g may have closed and opened again
+// inside the step, unseen by the events. Warned once per contact, with the time.
+void ContactRunner::check_excursion(double t, const Eigen::VectorXd& q0,
+                                    const Eigen::VectorXd& q1) {
+  const double t0 = last_step_t_;
+  last_step_t_ = t;
+  for (int i = 0; i < forces_->size(); ++i) {
+    const size_t k = static_cast<size_t>(i);
+    const GapValue& g = forces_->gap(i, q0, q1);
+    const std::array<double, 3> before = step_end_[k];
+    step_end_[k] = {t, g.g, g.rate};
+    if ((mode(i) == ContactMode::open && g.g > 0) || (mode(i) == ContactMode::compliant && g.g < 0))
+      slack_[k] = 0;
+    if (mode(i) != ContactMode::open || excursion_warned_[k] || !(before[0] == t0)) continue;
+    const double h = t - t0;
+    if (!(before[2] < 0 && g.rate > 0 && before[1] > 0 && g.g > 0)) continue;
+    double lowest = 1e300;
+    for (int j = 1; j < 16; ++j) {  // the cubic Hermite interpolant on a grid of the step
+      const double s = j / 16.0;
+      const double h00 = (1 + 2 * s) * (1 - s) * (1 - s), h10 = s * (1 - s) * (1 - s);
+      const double h01 = s * s * (3 - 2 * s), h11 = s * s * (s - 1);
+      lowest =
+          std::min(lowest, h00 * before[1] + h10 * h * before[2] + h01 * g.g + h11 * h * g.rate);
+    }
+    if (lowest < -tol_g_) {
+      excursion_warned_[k] = true;
+      out_.stats.warnings.push_back(
+          "contact '" + name(i) + "': its gap may have closed and opened again inside the step " +
+          fmt(t0) + " to " + fmt(t) + " s (interpolated low " + fmt(lowest) +
+          " m), unseen by the events (a grazing contact): use a tighter tolerance or a shorter "
+          "step");
+    }
+  }
+}
+
+Trajectory ContactRunner::leg(const State& s, double t1, int samples) {
+  ForwardOptions o = inner_;
+  const long steps_left = static_cast<long>(inner_.max_steps) - out_.stats.steps;
+  if (steps_left < 1)
+    throw Error("contact dynamics of '" + m_.name + "': the run's step budget (max_steps " +
+                    std::to_string(inner_.max_steps) + ") ran out at t = " + fmt(s.t) +
+                    " s after " + std::to_string(events_.size()) + " contact events",
+                "max_steps", s.t);
+  o.max_steps = static_cast<int>(steps_left);
+  o.t0 = s.t;
+  o.t1 = t1;
+  o.samples = samples;
+  ContactForces* f = forces_.get();
+  o.extra_forces = [f](double t, const Eigen::VectorXd& q0, const Eigen::VectorXd& q1,
+                       Eigen::VectorXd& out) { return f->add(t, q0, q1, out); };
+  o.stop_when = [this](double t, const Eigen::VectorXd& q0, const Eigen::VectorXd& q1) {
+    return event(t, q0, q1);
+  };
+  last_step_t_ = -1e300;
+  return forward_run(m_, s, o);
+}
+
+ContactRun ContactRunner::run(const State& initial) {
+  const int N = inner_.samples;
+  out_ = switching_trajectory(m_, N);
+  State s = initial;
+  s.t = inner_.t0;
+  for (int i = 0; i < forces_->size(); ++i) {
+    const double g = gap_only(m_, forces_->contacts[static_cast<size_t>(i)], s.q0);
+    if (!std::isfinite(g) || g < -tol_g_)
+      throw Error("contact '" + name(i) + "' starts penetrating: its gap is " + fmt(g) +
+                      " m at t = " + fmt(s.t) + " s (at most " + fmt(tol_g_) + " allowed)",
+                  name(i), s.t);
+  }
+  const double h = (inner_.t1 - inner_.t0) / (N - 1);
+  auto grid = [&](int k) { return sample_time(inner_.t0, inner_.t1, N, k); };
+  while (filled_ < N) {
+    if (!(event(s.t, s.q0, s.q1) > 0)) {  // a mode that does not hold from its start
+      handle(s);
+      continue;
+    }
+    auto near = [&](int k) {
+      return k >= 0 && std::abs(s.t - grid(k)) <=
+                           std::max(1e-9 * h, 1e3 * kTimeResolution * std::max(1.0, std::abs(s.t)));
+    };
+    Trajectory r;
+    if (near(filled_)) {
+      s.t = grid(filled_);
+      r = leg(s, inner_.t1, N - filled_);
+    } else if (near(filled_ - 1)) {
+      s.t = grid(filled_ - 1);
+      if (switched_) --filled_;  // an event at this output time: its sample again, after it
+      r = leg(s, inner_.t1, N - filled_ + (switched_ ? 0 : 1));
+    } else {
+      r = leg(s, grid(filled_), 2);
+    }
+    append_leg(out_, filled_, r, inner_, off_);
+    switched_ = false;
+    const Eigen::Index e = r.time.size() - 1;
+    s.t = r.time[e];
+    s.q0 = r.q0.row(e).transpose();
+    s.q1 = r.q1.row(e).transpose();
+    if (r.stats.stopped_by_event) handle(s);
+  }
+  if (switched_) rewrite_last(s);
+  check_energy_balance(m_, out_);
+  return {std::move(out_), std::move(events_)};
+}
+
+// An event at the last output time: its sample after the event (the velocities and energies).
+void ContactRunner::rewrite_last(const State& s) {
+  const Eigen::Index k = inner_.samples - 1;
+  out_.q0.row(k) = s.q0.transpose();
+  out_.q1.row(k) = s.q1.transpose();
+  out_.kinetic[k] = kinetic_energy(m_, s.q1);
+  out_.dissipated[k] = off_[kDissipated];
+}
+
+}  // namespace mo2d::detail
+
+namespace mo2d {
+
+ContactRun contact_dynamics(const Model& m, const std::vector<ContactDef>& contacts,
+                            const State& initial, const ContactOptions& options) {
+  if (contacts.empty())
+    throw Error("contact dynamics of '" + m.name + "': no contacts (use forward_dynamics)", m.name);
+  detail::ContactRunner runner(m, contacts, options);
+  return runner.run(initial);
+}
+
+}  // namespace mo2d

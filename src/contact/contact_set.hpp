@@ -1,0 +1,36 @@
+#pragma once
+// Internal to the contact stage (src/contact/): a contact compiled against a Model (its points
+// resolved to body points), its gap at a state (dispatched to the kinds: point_line.hpp,
+// circle_circle.hpp), and the gradient of a function of a body point in the node coordinates.
+#include <Eigen/Core>
+#include <string>
+
+#include "mo2d/contact.hpp"
+#include "mo2d/model.hpp"
+
+namespace mo2d::detail {
+
+// A contact with its points resolved: p the moving point; a, b the line's points (or a the
+// circle's centre).
+struct CompiledContact {
+  ContactDef def;
+  BodyPoint p, a, b;
+};
+
+// Resolves c's point names against m (a named point, a body node "body.node", a ground node).
+// Throws Error naming the contact and the unknown name, or a bad radius or law.
+CompiledContact compile_contact(const Model& m, const ContactDef& c);
+
+// The gap of c at (q0, q1) into out (out.J must have m.n1 entries; written, no allocation).
+void gap_into(const Model& m, const CompiledContact& c, const Eigen::Ref<const Eigen::VectorXd>& q0,
+              const Eigen::Ref<const Eigen::VectorXd>& q1, GapValue& out);
+// The gap alone (m): what the events watch.
+double gap_only(const Model& m, const CompiledContact& c,
+                const Eigen::Ref<const Eigen::VectorXd>& q0);
+
+// J += w^T dp/dq: the gradient of a function whose gradient with respect to the body point p is
+// w, in the node coordinates (Example 2.6 (b): p = (1 - gamma) p_i + gamma p_j + rho z x (p_j -
+// p_i), linear in the nodes). A point of the ground adds nothing.
+void add_point_gradient(const Model& m, const BodyPoint& p, const Vec2& w, Eigen::VectorXd& J);
+
+}  // namespace mo2d::detail

@@ -1,0 +1,44 @@
+#pragma once
+// Impact with Newton's restitution over the contacts closing at once (internal to src/contact/).
+//
+// At the impact the positions are fixed and the velocities jump by the impulses P_j >= 0 along the
+// gaps' gradients J_j, the other constraints holding (A v+ = b):
+//   [M A^T; A 0] [v+ - v-; mu] = [sum_j J_j^T P_j; 0],   so  v+ = v- + sum_j x_j P_j,
+// x_j = G J_j^T (G the top-left block of the inverse). The gap rates after are
+//   g'+ = g'- + W P,  W_ij = J_i x_j  (symmetric, positive semi-definite),
+// and Newton's law with complementarity (Glocker and Pfeiffer; Pfeiffer and Glocker 1996,
+// "Multibody Dynamics with Unilateral Contacts", ch. 7):
+//   w = W P + (1 + e) g'- >= 0,   P >= 0,   w_i P_i = 0
+// (w_i = g'+_i + e_i g'-_i: a contact that pushes leaves at e times its approach speed; one that
+// does not push leaves at least as fast). A linear complementarity problem, solved exactly by
+// enumerating the active sets (2^k for k <= kMaxImpactContacts contacts; for a positive definite
+// W its solution is unique). The kinetic energy lost is K(v-) - K(v+) >= 0 for e <= 1.
+#include <Eigen/Core>
+#include <string>
+#include <vector>
+
+#include "mo2d/model.hpp"
+
+namespace mo2d::detail {
+
+inline constexpr int kMaxImpactContacts = 8;
+
+// The solution of the LCP w = W P + q >= 0, P >= 0, w . P = 0 (k <= kMaxImpactContacts) by
+// enumeration; false if no active set gives one (to tol, relative to |q|).
+bool solve_lcp_enumerate(const Eigen::MatrixXd& W, const Eigen::VectorXd& q, Eigen::VectorXd& P);
+
+struct ImpactResult {
+  Eigen::VectorXd q1;       // v+
+  Eigen::VectorXd impulse;  // P per contact (N s)
+  Eigen::VectorXd rate;     // g'+ per contact (m/s)
+  double energy_lost = 0;   // J
+};
+
+// The impact at (t, q0) with velocities q1 (v-), the contacts' gradients J (rows, k x n1), their
+// rates g'- and restitutions e. Throws Error naming `names` and t if the LCP has no solution.
+ImpactResult newton_impact(const Model& m, double t, const Eigen::VectorXd& q0,
+                           const Eigen::VectorXd& q1, const Eigen::MatrixXd& J,
+                           const Eigen::VectorXd& rate, const Eigen::VectorXd& e,
+                           const std::string& names);
+
+}  // namespace mo2d::detail
