@@ -1,0 +1,83 @@
+// `mo2d render --animate`: the options, the plot strip's column looked up among the run's CSV
+// columns, and the animation written (atomically) with its frame count and codec printed.
+#include "render_animate.hpp"
+
+#include <cstdio>
+
+#include "mo2d/csv.hpp"
+#include "mo2d/error.hpp"
+#include "mo2d/render/animate.hpp"
+
+namespace mo2d::cli {
+
+namespace {
+
+// The column `label` of the run (coordinates, rates, efforts, reactions, added outputs), with its
+// unit in the axis label.
+AnimationPlot plot_column(const Model& model, const Trajectory& r, const std::string& label) {
+  const std::pair<const std::vector<std::string>*, const Eigen::MatrixXd*> groups[] = {
+      {&r.coordinate_labels, &r.q0}, {&r.rate_labels, &r.q1},
+      {&r.input_labels, &r.efforts}, {&r.reaction_labels, &r.reactions},
+      {&r.output_labels, &r.outputs}};
+  const std::vector<std::string> labels = trajectory_csv_labels(r);
+  const std::vector<std::string> units = trajectory_csv_units(model, r);
+  for (const auto& [names, values] : groups)
+    for (size_t c = 0; c < names->size(); ++c) {
+      if ((*names)[c] != label) continue;
+      AnimationPlot p;
+      std::string unit;
+      for (size_t k = 0; k < labels.size() && k < units.size(); ++k)
+        if (labels[k] == label) unit = units[k];
+      p.label = unit.empty() ? label : label + " (" + unit + ")";
+      const Eigen::VectorXd v = values->col(static_cast<Eigen::Index>(c));
+      p.values.assign(v.data(), v.data() + v.size());
+      return p;
+    }
+  std::string known;
+  for (const auto& [names, values] : groups)
+    for (const auto& n : *names) known += (known.empty() ? "" : ", ") + n;
+  throw Error("render: --plot: the run has no column '" + label + "' (columns: " + known + ")",
+              label);
+}
+
+}  // namespace
+
+void add_animate_options(CLI::App* sub, AnimateCliOptions& o) {
+  sub->add_option("--animate", o.path,
+                  "write an animation to this file instead of the filmstrip and plots: .webm "
+                  "(VP9), .mp4 (H.264), .gif or .apng (needs FFmpeg's libraries)");
+  sub->add_option("--fps", o.fps, "animation: frames per second (default 30)")
+      ->check(CLI::PositiveNumber);
+  sub->add_option("--slow", o.slow,
+                  "animation: play this many times slower than real time (default 1)")
+      ->check(CLI::PositiveNumber);
+  sub->add_option("--plot", o.plot,
+                  "animation: a column of the run (e.g. crank.torque) drawn below the frames "
+                  "with a cursor at the frame's time");
+  sub->add_option("--max-frames", o.max_frames, "animation: the most frames (default 3000)")
+      ->check(CLI::PositiveNumber);
+  sub->add_option("--width", o.width, "animation: frame width in pixels (default 800)")
+      ->check(CLI::Range(16, 8192));
+  sub->add_option("--height", o.height, "animation: frame height in pixels (default 600)")
+      ->check(CLI::Range(16, 8192));
+}
+
+void write_run_animation(const Model& model, const Trajectory& run, const FrameOptions& frame,
+                         const AnimateCliOptions& o) {
+  AnimationOptions a;
+  a.frame = frame;
+  a.frame.width = o.width;
+  a.frame.height = o.height;
+  a.fps = o.fps;
+  a.slow = o.slow;
+  a.max_frames = o.max_frames;
+  if (!o.plot.empty()) {
+    a.plot = true;
+    a.strip = plot_column(model, run, o.plot);
+  }
+  const AnimationInfo info = write_animation(model, motion_of(run), a, o.path);
+  std::printf("  wrote %s: %d frames of %d x %d at %g frames/s (%s)\n", o.path.c_str(), info.frames,
+              info.width, info.height, info.fps, info.codec.c_str());
+}
+
+}  // namespace mo2d::cli
