@@ -2,6 +2,7 @@
 // columns, and the animation written (atomically) with its frame count and codec printed.
 #include "render_animate.hpp"
 
+#include <chrono>
 #include <cstdio>
 
 #include "mo2d/csv.hpp"
@@ -16,8 +17,10 @@ namespace {
 // unit in the axis label.
 AnimationPlot plot_column(const Model& model, const Trajectory& r, const std::string& label) {
   const std::pair<const std::vector<std::string>*, const Eigen::MatrixXd*> groups[] = {
-      {&r.coordinate_labels, &r.q0}, {&r.rate_labels, &r.q1},
-      {&r.input_labels, &r.efforts}, {&r.reaction_labels, &r.reactions},
+      {&r.coordinate_labels, &r.q0},
+      {&r.rate_labels, &r.q1},
+      {&r.input_labels, &r.efforts},
+      {&r.reaction_labels, &r.reactions},
       {&r.output_labels, &r.outputs}};
   const std::vector<std::string> labels = trajectory_csv_labels(r);
   const std::vector<std::string> units = trajectory_csv_units(model, r);
@@ -56,6 +59,8 @@ void add_animate_options(CLI::App* sub, AnimateCliOptions& o) {
                   "with a cursor at the frame's time");
   sub->add_option("--max-frames", o.max_frames, "animation: the most frames (default 3000)")
       ->check(CLI::PositiveNumber);
+  sub->add_option("--threads", o.threads, "animation: threads drawing frames (default: the cores)")
+      ->check(CLI::NonNegativeNumber);
   sub->add_option("--width", o.width, "animation: frame width in pixels (default 800)")
       ->check(CLI::Range(16, 8192));
   sub->add_option("--height", o.height, "animation: frame height in pixels (default 600)")
@@ -75,9 +80,12 @@ void write_run_animation(const Model& model, const Trajectory& run, const FrameO
     a.plot = true;
     a.strip = plot_column(model, run, o.plot);
   }
+  a.threads = o.threads;
+  const auto start = std::chrono::steady_clock::now();
   const AnimationInfo info = write_animation(model, motion_of(run), a, o.path);
-  std::printf("  wrote %s: %d frames of %d x %d at %g frames/s (%s)\n", o.path.c_str(), info.frames,
-              info.width, info.height, info.fps, info.codec.c_str());
+  const std::chrono::duration<double> took = std::chrono::steady_clock::now() - start;
+  std::printf("  wrote %s: %d frames of %d x %d at %g frames/s (%s) in %.2f s\n", o.path.c_str(),
+              info.frames, info.width, info.height, info.fps, info.codec.c_str(), took.count());
 }
 
 }  // namespace mo2d::cli

@@ -16,6 +16,7 @@ struct AnimateCliOptions {
   std::string plot{};  // a column of the run's CSV drawn in a strip below the frames
   int max_frames = 3000;
   int width = 800, height = 600;
+  int threads = 0;  // 0: the cores
 };
 
 void add_animate_options(CLI::App* sub, AnimateCliOptions& o);

@@ -114,9 +114,9 @@ struct Animation {
   // Frame i into `pixels` (width x height, 0x00RRGGBB words as Cairo's RGB24).
   void draw(int i, std::vector<std::uint32_t>& pixels) const {
     pixels.assign(static_cast<size_t>(width) * static_cast<size_t>(height), 0);
-    cairo_surface_t* surface = cairo_image_surface_create_for_data(
-        reinterpret_cast<unsigned char*>(pixels.data()), CAIRO_FORMAT_RGB24, width, height,
-        4 * width);
+    cairo_surface_t* surface =
+        cairo_image_surface_create_for_data(reinterpret_cast<unsigned char*>(pixels.data()),
+                                            CAIRO_FORMAT_RGB24, width, height, 4 * width);
     cairo_t* cr = cairo_create(surface);
     detail::set_colour(cr, plan.options.style.background);
     cairo_paint(cr);
@@ -168,8 +168,7 @@ std::string animation_support() {
 
 std::vector<double> animation_times(const Motion& motion, const AnimationOptions& o) {
   if (!std::isfinite(o.fps) || o.fps <= 0)
-    throw Error("render: the frame rate must be finite and > 0 (got " + std::to_string(o.fps) +
-                    ")",
+    throw Error("render: the frame rate must be finite and > 0 (got " + std::to_string(o.fps) + ")",
                 "fps");
   if (!std::isfinite(o.slow) || o.slow <= 0)
     throw Error("render: the slow-motion factor must be finite and > 0 (got " +

@@ -46,10 +46,17 @@ int64_t seek_memory(void* opaque, int64_t offset, int whence) {
   const auto size = static_cast<int64_t>(f->bytes.size());
   if (whence & AVSEEK_SIZE) return size;
   switch (whence & ~AVSEEK_FORCE) {
-    case SEEK_SET: f->pos = offset; break;
-    case SEEK_CUR: f->pos += offset; break;
-    case SEEK_END: f->pos = size + offset; break;
-    default: return AVERROR(EINVAL);
+    case SEEK_SET:
+      f->pos = offset;
+      break;
+    case SEEK_CUR:
+      f->pos += offset;
+      break;
+    case SEEK_END:
+      f->pos = size + offset;
+      break;
+    default:
+      return AVERROR(EINVAL);
   }
   return f->pos < 0 ? AVERROR(EINVAL) : f->pos;
 }
@@ -94,7 +101,8 @@ struct Palette {
             s[0] > 0 ? static_cast<int>(s[static_cast<size_t>(ch) + 1] / s[0] + 0.5)
                      : (((c >> (10 - 5 * ch)) & 31) << 3) + 4;
       colours[k] = 0xFF000000u | static_cast<std::uint32_t>(rgb[k][0] << 16) |
-                   static_cast<std::uint32_t>(rgb[k][1] << 8) | static_cast<std::uint32_t>(rgb[k][2]);
+                   static_cast<std::uint32_t>(rgb[k][1] << 8) |
+                   static_cast<std::uint32_t>(rgb[k][2]);
     }
     for (int c = 0; c < 32768; ++c) {
       const int r = ((c >> 10) << 3) + 4, g = (((c >> 5) & 31) << 3) + 4, b = ((c & 31) << 3) + 4;
@@ -121,9 +129,9 @@ EncoderChoice encoder_choice(const std::string& path) {
   if (ext == "mp4") return {"mp4", true, false};
   if (ext == "gif") return {"gif", false, true};
   if (ext == "apng") return {"apng", false, false};
-  throw Error("render: cannot tell the animation format of '" + path +
-                  "' (use .webm, .mp4, .gif or .apng)",
-              path);
+  throw Error(
+      "render: cannot tell the animation format of '" + path + "' (use .webm, .mp4, .gif or .apng)",
+      path);
 }
 
 struct Encoder::Impl {
@@ -166,8 +174,8 @@ struct Encoder::Impl {
                                                             : std::vector{muxer.c_str()};
     for (const char* n : names)
       if (const AVCodec* c = avcodec_find_encoder_by_name(n)) return c;
-    throw Error("render: this FFmpeg (libavcodec " LIBAVCODEC_IDENT
-                ") has no encoder for '" + path + "' (tried " + names.front() +
+    throw Error("render: this FFmpeg (libavcodec " LIBAVCODEC_IDENT ") has no encoder for '" +
+                    path + "' (tried " + names.front() +
                     (names.size() > 1 ? std::string(", ") + names.back() : std::string()) + ")",
                 path);
   }

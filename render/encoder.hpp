@@ -14,9 +14,9 @@ std::string encoder_support();
 // The container and codec of an output path: webm (VP9, else VP8), mp4 (libx264, else mpeg4),
 // gif, apng. Error for another extension.
 struct EncoderChoice {
-  std::string muxer{};       // libavformat's name: webm, mp4, gif, apng
-  bool even_size = false;    // 4:2:0 video: width and height must be even
-  bool palette = false;      // GIF: 256 colours
+  std::string muxer{};     // libavformat's name: webm, mp4, gif, apng
+  bool even_size = false;  // 4:2:0 video: width and height must be even
+  bool palette = false;    // GIF: 256 colours
 };
 EncoderChoice encoder_choice(const std::string& path);
 

@@ -52,9 +52,9 @@ AnimationOptions small_animation() {
 }
 
 fs::path animation_dir() {
-  const fs::path d = fs::temp_directory_path() /
-                     ("mo2d_animate_test_" + std::to_string(::getpid()) + "_" +
-                      ::testing::UnitTest::GetInstance()->current_test_info()->name());
+  const fs::path d =
+      fs::temp_directory_path() / ("mo2d_animate_test_" + std::to_string(::getpid()) + "_" +
+                                   ::testing::UnitTest::GetInstance()->current_test_info()->name());
   fs::remove_all(d);
   fs::create_directories(d);
   return d;
@@ -107,8 +107,8 @@ TEST(Animate, ThePlotStripsCursorIsAtTheFramesTime) {
   p.width = 320, p.height = 100, p.dpi = a.frame.dpi, p.legend = false;
   p.x.label = "time (s)", p.x.range = std::pair{0.0, 1.0}, p.y.label = a.strip.label;
   const Eigen::VectorXd& t = w.run.time;
-  p.series.push_back({a.strip.label, {t.data(), t.data() + t.size()}, a.strip.values, {}, false,
-                      false});
+  p.series.push_back(
+      {a.strip.label, {t.data(), t.data() + t.size()}, a.strip.values, {}, false, false});
   const PlotLayout L = plot_layout(p);
   for (int i : {3, 20}) {
     const Image im = render_animation_frame(w.model, w.motion, a, i);
@@ -170,10 +170,9 @@ Decoded decode(const std::string& path) {
   auto receive = [&] {
     while (avcodec_receive_frame(ctx, frame) == 0) {
       out.width = frame->width, out.height = frame->height;
-      sws = sws_getCachedContext(sws, frame->width, frame->height,
-                                 static_cast<AVPixelFormat>(frame->format), frame->width,
-                                 frame->height, AV_PIX_FMT_RGB32, SWS_POINT | SWS_ACCURATE_RND,
-                                 nullptr, nullptr, nullptr);
+      sws = sws_getCachedContext(
+          sws, frame->width, frame->height, static_cast<AVPixelFormat>(frame->format), frame->width,
+          frame->height, AV_PIX_FMT_RGB32, SWS_POINT | SWS_ACCURATE_RND, nullptr, nullptr, nullptr);
       std::vector<std::uint32_t> px(static_cast<size_t>(frame->width * frame->height));
       uint8_t* dst[1] = {reinterpret_cast<uint8_t*>(px.data())};
       const int stride[1] = {4 * frame->width};
@@ -250,8 +249,9 @@ TEST(Animate, WebmFramesAreClosestToTheStillFramesOfTheSameTimes) {
   for (int i : {5, 17, 29}) {
     double diff[3];
     for (int j = 0; j < 3; ++j)
-      diff[j] = mean_difference(v.frames[static_cast<size_t>(i)],
-                                render_frame(w.model, w.motion, i - 1 + j, small_animation().frame));
+      diff[j] =
+          mean_difference(v.frames[static_cast<size_t>(i)],
+                          render_frame(w.model, w.motion, i - 1 + j, small_animation().frame));
     EXPECT_LT(diff[1], 0.7 * std::min(diff[0], diff[2]))
         << "frame " << i << ": differences to the stills " << i - 1 << ", " << i << ", " << i + 1
         << ": " << diff[0] << ", " << diff[1] << ", " << diff[2];

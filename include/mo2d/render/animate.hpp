@@ -25,7 +25,7 @@ namespace mo2d {
 
 // A column drawn in a strip below the frames, with a cursor at the frame's time.
 struct AnimationPlot {
-  std::string label{};          // axis label with its unit: "crank.torque (N·m)"
+  std::string label{};           // axis label with its unit: "crank.torque (N·m)"
   std::vector<double> values{};  // one per sample of the Motion
   int height = 0;                // pixels; 0: a third of the frame's height
 };
