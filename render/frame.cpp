@@ -316,14 +316,20 @@ struct Painter {
   void decorations(const Decorations& d) const {
     const double W = p.view.width, H = p.view.height, m = px(p.options.margin);
     set_colour(cr, s.ink);
+    double x = m;
+    if (d.time && !p.options.title.empty()) {
+      font(s.font_size);
+      draw_text(cr, p.options.title, x, m, 0, 0);
+      x += text_width(cr, p.options.title + (p.options.show_time ? "   " : ""));
+    }
     if (d.time && p.options.show_time) {
       font(s.font_size, true);
-      draw_text(cr, "t", m, m, 0, 0);
+      draw_text(cr, "t", x, m, 0, 0);
       const double tw = text_width(cr, "t");
       font(s.font_size);
       char buf[64];
       std::snprintf(buf, sizeof buf, " = %.*f s", p.time_decimals, p.motion->time[k]);
-      draw_text(cr, buf, m + tw, m, 0, 0);
+      draw_text(cr, buf, x + tw, m, 0, 0);
     }
     const double base = H - m - px(2);
     if (d.scale_bar && p.options.show_scale_bar) {

@@ -154,4 +154,19 @@ TEST(RenderLoads, LabelsWriteTheBodyNames) {
   EXPECT_LT(count(render_frame(m, mo, 0, o), kPaper), without - 20);
 }
 
+// FrameOptions::title is written at the top left (the mode pictures' "mode 1: ... Hz").
+TEST(RenderLoads, TitleIsWrittenAtTheTopLeft) {
+  const Model m = bar(Law::constant(0), Law::constant(0));
+  const Motion mo = turning(m, 1);
+  FrameOptions o = window();
+  o.style.ink = rgb_hex(kGreen);
+  const Image plain = render_frame(m, mo, 0, o);
+  o.title = "mode 1: 2.5 Hz";
+  const Image titled = render_frame(m, mo, 0, o);
+  int changed = 0;
+  for (int y = 0; y < 30; ++y)
+    for (int x = 0; x < 100; ++x) changed += titled.at(x, y) != plain.at(x, y);
+  EXPECT_GT(changed, 40);
+}
+
 }  // namespace

@@ -81,6 +81,9 @@ struct FrameOptions {
   bool show_scale_bar = true;
   bool show_axes = true;
   bool show_labels = false;  // body names
+  // Text at the top left, before the time stamp (e.g. "mode 1: 2.31 Hz, damping ratio 0.052");
+  // empty: none.
+  std::string title{};
   // Applied forces (Model::forces: arrows from their points, of length style.effort_length at the
   // run's peak |F| of that force) and torques (Model::torques: arcs around their body's centre of
   // mass, sweeping up to 270 degrees at the run's peak, counter-clockwise for a positive torque),
