@@ -72,6 +72,7 @@ int render(const RenderCliOptions& o) {
       files.commit();
       return 0;
     }
+    set_filmstrip_phase(r, o.animate, job);
     const RenderOutputs out = render_run(model, r, job);
     files.commit();
     print_outputs(out);
@@ -86,6 +87,7 @@ int render(const RenderCliOptions& o) {
       files.commit();
       return 0;
     }
+    set_filmstrip_phase(r, o.animate, job);
     const RenderOutputs out = render_run(model, r, job);
     files.commit();
     print_outputs(out);

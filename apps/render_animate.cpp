@@ -43,7 +43,41 @@ AnimationPlot plot_column(const Model& model, const Trajectory& r, const std::st
               label);
 }
 
+// "720deg", "4pi", "12.566": a cycle in the coordinate's unit (deg and pi: radians).
+double parse_cycle(const std::string& text) {
+  const auto ends = [&](const std::string& tail) {
+    return text.size() > tail.size() &&
+           text.compare(text.size() - tail.size(), tail.size(), tail) == 0;
+  };
+  const double scale = ends("deg")  ? 3.14159265358979323846 / 180
+                       : ends("pi") ? 3.14159265358979323846
+                                    : 1;
+  const std::string number = text.substr(0, text.size() - (ends("deg") ? 3 : ends("pi") ? 2 : 0));
+  size_t used = 0;
+  double v = 0;
+  try {
+    v = std::stod(number, &used);
+  } catch (const std::exception&) {
+    used = 0;
+  }
+  if (used != number.size() || !(v > 0))
+    throw Error("render: --filmstrip-cycle '" + text +
+                    "' is not a positive number (optionally with deg or pi: 720deg, 4pi)",
+                "--filmstrip-cycle");
+  return v * scale;
+}
+
 }  // namespace
+
+void set_filmstrip_phase(const Trajectory& run, const AnimateCliOptions& o, RenderJob& job) {
+  if (o.phase.empty()) return;
+  if (o.cycle.empty())
+    throw Error("render: --filmstrip-phase needs --filmstrip-cycle (e.g. 360deg)",
+                "--filmstrip-cycle");
+  const Eigen::VectorXd v = run.q0.col(run.column(o.phase));
+  job.filmstrip_options.phase.assign(v.data(), v.data() + v.size());
+  job.filmstrip_options.cycle = parse_cycle(o.cycle);
+}
 
 void add_animate_options(CLI::App* sub, AnimateCliOptions& o) {
   sub->add_option("--animate", o.path,
@@ -59,6 +93,12 @@ void add_animate_options(CLI::App* sub, AnimateCliOptions& o) {
                   "with a cursor at the frame's time");
   sub->add_option("--max-frames", o.max_frames, "animation: the most frames (default 3000)")
       ->check(CLI::PositiveNumber);
+  sub->add_option("--filmstrip-phase", o.phase,
+                  "filmstrip tiles at evenly spaced values of this coordinate (e.g. crank.angle) "
+                  "over the run's last cycle, not at evenly spaced times");
+  sub->add_option("--filmstrip-cycle", o.cycle,
+                  "the cycle of --filmstrip-phase: 360deg, 720deg (a four-stroke engine), 2pi, "
+                  "or a length in m");
   sub->add_option("--threads", o.threads, "animation: threads drawing frames (default: the cores)")
       ->check(CLI::NonNegativeNumber);
   sub->add_option("--width", o.width, "animation: frame width in pixels (default 800)")

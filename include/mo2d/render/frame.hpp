@@ -126,6 +126,13 @@ struct FilmstripOptions {
   // number of tiles, equally spaced samples
   int frames = 6;
   std::vector<int> samples{};  // these samples instead (then `frames` is ignored)
+  // Tiles at evenly spaced values of a phase instead of evenly spaced times, so that a fast
+  // periodic motion is not aliased: one phase value per sample (e.g. a crank angle, monotonic)
+  // and its cycle (2 pi; a four-stroke engine: 4 pi). The tiles show the run's last whole cycle,
+  // at the samples nearest phase_end - cycle + j cycle / frames (j = 0 .. frames - 1). Error if
+  // the run covers less than one cycle.
+  std::vector<double> phase{};
+  double cycle = 0;
   // tiles per row (0: one row)
   int columns = 3;
   double gap = 4;           // points between tiles
