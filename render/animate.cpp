@@ -231,6 +231,7 @@ AnimationInfo write_animation(const Model& model, const Motion& motion,
     const int first = b * batch, count = std::min(batch, n - first);
     out.resize(static_cast<size_t>(count));
     std::vector<std::future<void>> jobs;
+    jobs.reserve(static_cast<size_t>(threads));
     for (int w = 0; w < threads; ++w)
       jobs.push_back(std::async(std::launch::async, [&, w] {
         for (int i = w; i < count; i += threads) a.draw(first + i, out[static_cast<size_t>(i)]);

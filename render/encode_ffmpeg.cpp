@@ -5,6 +5,7 @@
 // x264's veryfast preset, GIF with a palette of the most frequent colours of a few frames.
 #include <algorithm>
 #include <array>
+#include <cmath>
 #include <cstring>
 
 #include "encoder.hpp"
@@ -98,7 +99,7 @@ struct Palette {
       // an empty bin keeps its own centre
       for (int ch = 0; ch < 3; ++ch)
         rgb[k][static_cast<size_t>(ch)] =
-            s[0] > 0 ? static_cast<int>(s[static_cast<size_t>(ch) + 1] / s[0] + 0.5)
+            s[0] > 0 ? static_cast<int>(std::lround(s[static_cast<size_t>(ch) + 1] / s[0]))
                      : (((c >> (10 - 5 * ch)) & 31) << 3) + 4;
       colours[k] = 0xFF000000u | static_cast<std::uint32_t>(rgb[k][0] << 16) |
                    static_cast<std::uint32_t>(rgb[k][1] << 8) |

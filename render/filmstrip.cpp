@@ -38,8 +38,8 @@ std::vector<int> phase_samples(const Motion& motion, const FilmstripOptions& o) 
   std::vector<int> out;
   for (int j = 0; j < o.frames; ++j) {
     const double target = start + dir * o.cycle * j / o.frames;
-    while (k + 1 < N && dir * (o.phase[static_cast<size_t>(k + 1)] - target) <= 0) ++k;
-    const int best = k + 1 < N && std::abs(o.phase[static_cast<size_t>(k + 1)] - target) <
+    while (k + 1 < N && dir * (o.phase[static_cast<size_t>(k) + 1] - target) <= 0) ++k;
+    const int best = k + 1 < N && std::abs(o.phase[static_cast<size_t>(k) + 1] - target) <
                                       std::abs(o.phase[static_cast<size_t>(k)] - target)
                          ? k + 1
                          : k;
