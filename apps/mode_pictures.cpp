@@ -99,8 +99,8 @@ std::string write_mode_picture(const Model& m, const StateSpace& ss, const Mode&
   return path;
 }
 
-std::string write_mode_filmstrip(const Model& m, const StateSpace& ss, const Mode& mode,
-                                 int number, double amplitude, const std::string& path) {
+std::string write_mode_filmstrip(const Model& m, const StateSpace& ss, const Mode& mode, int number,
+                                 double amplitude, const std::string& path) {
   const Eigen::VectorXd dz = mode_step(m, mode, amplitude);
   const double period = mode.oscillatory ? 2 * std::numbers::pi / mode.omega_d : 1.0;
   std::vector<double> s, time;
