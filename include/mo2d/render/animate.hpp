@@ -30,6 +30,7 @@ struct AnimationPlot {
   int height = 0;                // pixels; 0: a third of the frame's height
 };
 
+// What an animation shows, its frame rate, speed and budget.
 struct AnimationOptions {
   // size, what each frame shows (traces, loads, labels, ...); sizes are rounded up to even for
   // WebM and MP4 (4:2:0 video)
@@ -39,14 +40,17 @@ struct AnimationOptions {
   // the most frames written (an Error names the limit and the frames asked for)
   int max_frames = 3000;
   bool plot = false;  // draw `strip` below the frames
+  // the column drawn below the frames when `plot` is set
   AnimationPlot strip{};
   int threads = 0;  // threads drawing frames; 0: std::thread::hardware_concurrency()
 };
 
 // What write_animation() wrote.
 struct AnimationInfo {
+  // frames written
   int frames = 0;
   int width = 0, height = 0;  // pixels of the encoded frames
+  // frames per second of the file
   double fps = 0;
   std::string codec{};  // FFmpeg's name of the encoder: libvpx-vp9, libx264, mpeg4, gif, apng
 };
