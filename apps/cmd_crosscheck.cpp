@@ -1,20 +1,22 @@
 // mo2d crosscheck SCENE [--set name=value]... [--out DIR] [--step H]: rebuilds the scene's
 // mechanism in Box2D, drives its motors along the scene's prescribed motion, and compares Box2D's
 // motor efforts and joint reactions with mo2d's inverse dynamics (docs/crosscheck.md). Prints the
-// comparison table; writes DIR/NAME_crosscheck.csv (both series) and an overlay plot of the
-// efforts, DIR/NAME_crosscheck.png. Exit status 3 when the engines disagree (the tolerances are
-// set so that a disagreement means a modelling error, docs/crosscheck.md); a step too coarse for
-// the motion or too few compared steps is an error (status 1), never a verdict.
-// A scene whose run solves forward (run: {solve: forward}), or --forward: from the scene's
-// consistent initial state, under the scene's efforts and controllers, mo2d (CVODE BDF, rtol 1e-10)
-// and Box2D integrate over the run; centres of mass and body angles are compared at the run's
-// samples; writes DIR/NAME_crosscheck_forward.csv (t and the worst body's errors); exit status 3
-// when an error exceeds --position-tolerance (relative to the mechanism's size) or
+// comparison table; writes DIR/NAME_crosscheck.csv (both series) and DIR/NAME_crosscheck.png:
+// the efforts of both, their difference, the joint reactions and theirs (crosscheck_picture.cpp).
+// Exit status 3 when the engines disagree (the tolerances are set so that a disagreement means a
+// modelling error, docs/crosscheck.md); a step too coarse for the motion or too few compared steps
+// is an error (status 1), never a verdict. A scene whose run solves forward (run: {solve:
+// forward}), or --forward: from the scene's consistent initial state, under the scene's efforts and
+// controllers, mo2d (CVODE BDF, rtol 1e-10) and Box2D integrate over the run; centres of mass and
+// body angles are compared at the run's samples; writes DIR/NAME_crosscheck_forward.csv (t and the
+// worst body's errors); exit status 3 when an error exceeds --position-tolerance (relative to the
+// mechanism's size) or
 // --angle-tolerance.
 #include <cstdio>
 #include <iostream>
 
 #include "command.hpp"
+#include "crosscheck_picture.hpp"
 #include "mo2d/crosscheck.hpp"
 #include "mo2d/mo2d.hpp"
 #include "mo2d/render.hpp"
@@ -37,30 +39,6 @@ struct CrosscheckCliOptions {
   double position_tolerance = 1e-2;  // --forward: max |com error| / Model::scale
   double angle_tolerance = 2e-2;     // --forward: rad
 };
-
-// mo2d (solid) and Box2D (dashed, next colour) efforts against time.
-Plot overlay_plot(const CrosscheckReport& r) {
-  Plot p;
-  p.title = r.mechanism + ": mo2d and Box2D efforts";
-  p.x.label = "time (s)";
-  p.y.label = "effort (N m, N)";
-  std::vector<double> t(r.time.data(), r.time.data() + r.time.size());
-  for (std::size_t k = 0; k < r.effort_labels.size(); ++k) {
-    const auto colour = okabe_ito()[k % okabe_ito().size()];
-    Series a{.label = r.effort_labels[k] + " (mo2d)", .x = t, .y = {}, .colour = colour};
-    Series b{.label = r.effort_labels[k] + " (Box2D)",
-             .x = t,
-             .y = {},
-             .colour = colour,
-             .dashed = true};
-    const auto col = static_cast<Eigen::Index>(k);
-    a.y.assign(r.mo2d_efforts.col(col).data(), r.mo2d_efforts.col(col).data() + r.time.size());
-    b.y.assign(r.box2d_efforts.col(col).data(), r.box2d_efforts.col(col).data() + r.time.size());
-    p.series.push_back(std::move(a));
-    p.series.push_back(std::move(b));
-  }
-  return p;
-}
 
 // The cross-check's settings, with the scene's budgets (Box2D steps, wall time, result memory:
 // CrosscheckOptions::max_steps, checked by the library).
@@ -145,14 +123,17 @@ int crosscheck(const CrosscheckCliOptions& o) {
   print_crosscheck_table(std::cout, r);
   std::cout.flush();
   OutputSet files;  // the CSV and the plot land together or not at all
+  int panels = 0;
   {
     OutputSet::Scope scope(files);
     write_crosscheck_csv(r, output_path(o.scene, scene, "crosscheck.csv"));
-    if (!r.effort_labels.empty())
-      write_plot(overlay_plot(r), output_path(o.scene, scene, "crosscheck.png"));
+    panels = write_crosscheck_picture(r, output_path(o.scene, scene, "crosscheck.png"));
   }
   files.commit();
   for (const auto& path : files.paths()) std::printf("  wrote %s\n", path.c_str());
+  if (panels > 0)
+    std::printf("  picture: %d panels (efforts, their difference%s)\n", panels,
+                panels > 2 ? ", joint reactions, theirs" : "");
   return r.agree ? 0 : 3;
 }
 

@@ -120,10 +120,10 @@ int modes(const ModesCliOptions& o) {
   for (size_t k = 0; o.pictures && k < ms.size(); ++k) {
     if (ms[k].rigid || ms[k].dz.size() == 0 || ms[k].dz.isZero()) continue;
     const std::string tag = "mode" + std::to_string(k + 1);
-    write_mode_picture(model, e.linear, ms[k], amplitude,
+    write_mode_picture(model, e.linear, ms[k], static_cast<int>(k + 1), amplitude,
                        output_path(o.scene, scene, tag + ".png"));
     if (o.filmstrip)
-      write_mode_filmstrip(model, e.linear, ms[k], amplitude,
+      write_mode_filmstrip(model, e.linear, ms[k], static_cast<int>(k + 1), amplitude,
                            output_path(o.scene, scene, tag + "_filmstrip.png"));
   }
   files.commit();

@@ -2,12 +2,14 @@
 // [--every K] [--format png|svg|pdf] [--video] [--loads] [--trace P,...] [--labels]: solves the
 // scene (what its run.solve says, or --solve), then draws a filmstrip and the plots of that run
 // (and, on request, every K-th frame and an MP4 when ffmpeg is installed) under DIR; --loads draws
-// the applied forces and torques, --trace the paths of points, --labels the body names.
+// the applied forces and torques, --trace the paths of points, --labels the body names;
+// --animate FILE writes an animation instead (render_animate.cpp).
 #include <cstdio>
 
 #include "command.hpp"
 #include "mo2d/mo2d.hpp"
 #include "mo2d/render.hpp"
+#include "render_animate.hpp"
 #include "scene_options.hpp"
 
 namespace mo2d::cli {
@@ -22,6 +24,7 @@ struct RenderCliOptions {
   std::string format = "png";
   bool loads = false, labels = false;
   std::vector<std::string> traces{};
+  AnimateCliOptions animate{};  // --animate PATH: only the animation (render_animate.cpp)
 };
 
 // What every frame and every filmstrip tile shows besides the mechanism.
@@ -64,6 +67,12 @@ int render(const RenderCliOptions& o) {
     const Trajectory r = forward_dynamics(model, initial_state(scene, model), run);
     std::printf("mo2d render: forward dynamics of %s, %d samples over [%g, %g] s\n",
                 model.name.c_str(), static_cast<int>(r.time.size()), run.t0, run.t1);
+    if (!o.animate.path.empty()) {
+      write_run_animation(model, r, job.frame, o.animate);
+      files.commit();
+      return 0;
+    }
+    set_filmstrip_phase(r, o.animate, job);
     const RenderOutputs out = render_run(model, r, job);
     files.commit();
     print_outputs(out);
@@ -73,6 +82,12 @@ int render(const RenderCliOptions& o) {
     const Trajectory r = inverse_dynamics(model, scene.motion, run);
     std::printf("mo2d render: inverse dynamics of %s, %d samples over [%g, %g] s\n",
                 model.name.c_str(), static_cast<int>(r.time.size()), run.t0, run.t1);
+    if (!o.animate.path.empty()) {
+      write_run_animation(model, r, job.frame, o.animate);
+      files.commit();
+      return 0;
+    }
+    set_filmstrip_phase(r, o.animate, job);
     const RenderOutputs out = render_run(model, r, job);
     files.commit();
     print_outputs(out);
@@ -102,6 +117,7 @@ Command add_render_command(CLI::App& app) {
                   "(comma-separated or repeated)")
       ->delimiter(',');
   sub->add_flag("--labels", o->labels, "write each body's name beside it");
+  add_animate_options(sub, o->animate);
   return {sub, [o] { return render(*o); }};
 }
 

@@ -70,13 +70,25 @@ std::uint32_t darker(std::uint32_t a, std::uint32_t b) {
 
 }  // namespace
 
-std::string write_mode_picture(const Model& m, const StateSpace& ss, const Mode& mode,
+std::string mode_title(const Mode& mode, int number) {
+  char buf[160];
+  if (mode.oscillatory)
+    std::snprintf(buf, sizeof buf, "mode %d: %.4g Hz, damping ratio %.3g", number, mode.hz,
+                  mode.damping_ratio);
+  else
+    std::snprintf(buf, sizeof buf, "mode %d: not oscillatory, \u03BB = %.4g 1/s", number,
+                  mode.eigenvalue.real());
+  return buf;
+}
+
+std::string write_mode_picture(const Model& m, const StateSpace& ss, const Mode& mode, int number,
                                double amplitude, const std::string& path) {
   const Eigen::VectorXd dz = mode_step(m, mode, amplitude);
   const Motion mo = along_mode(m, ss, dz, {0.0, 1.0, -1.0}, {ss.t, ss.t, ss.t});
   FrameOptions f;
   f.show_time = false;
   f.show_efforts = false;
+  f.title = mode_title(mode, number);
   const Image eq = render_frame(m, mo, 0, f);
   const Image plus = render_frame(m, mo, 1, f);
   const Image minus = render_frame(m, mo, 2, f);
@@ -87,7 +99,7 @@ std::string write_mode_picture(const Model& m, const StateSpace& ss, const Mode&
   return path;
 }
 
-std::string write_mode_filmstrip(const Model& m, const StateSpace& ss, const Mode& mode,
+std::string write_mode_filmstrip(const Model& m, const StateSpace& ss, const Mode& mode, int number,
                                  double amplitude, const std::string& path) {
   const Eigen::VectorXd dz = mode_step(m, mode, amplitude);
   const double period = mode.oscillatory ? 2 * std::numbers::pi / mode.omega_d : 1.0;
@@ -101,6 +113,7 @@ std::string write_mode_filmstrip(const Model& m, const StateSpace& ss, const Mod
   fo.frames = 8;
   fo.columns = 4;
   fo.tile.show_efforts = false;
+  fo.tile.title = mode_title(mode, number);
   write_filmstrip(m, mo, fo, path);
   return path;
 }

@@ -9,11 +9,14 @@
 
 namespace mo2d::cli {
 
+// "mode 2: 3.41 Hz, damping ratio 0.052" (not oscillatory: its real eigenvalue): the title of
+// both pictures of mode `number` (1-based).
+std::string mode_title(const Mode& mode, int number);
 // amplitude: the largest node displacement (m). Written atomically (PNG); returns the path.
-std::string write_mode_picture(const Model& m, const StateSpace& ss, const Mode& mode,
+std::string write_mode_picture(const Model& m, const StateSpace& ss, const Mode& mode, int number,
                                double amplitude, const std::string& path);
 // Eight tiles over one period (of omega_d; 1 s for a mode that does not oscillate).
-std::string write_mode_filmstrip(const Model& m, const StateSpace& ss, const Mode& mode,
+std::string write_mode_filmstrip(const Model& m, const StateSpace& ss, const Mode& mode, int number,
                                  double amplitude, const std::string& path);
 
 }  // namespace mo2d::cli

@@ -17,6 +17,37 @@ struct Sheet {
   std::vector<int> samples{};
 };
 
+// The samples nearest evenly spaced values of the phase over the run's last cycle.
+std::vector<int> phase_samples(const Motion& motion, const FilmstripOptions& o) {
+  const auto N = static_cast<int>(motion.time.size());
+  if (static_cast<int>(o.phase.size()) != N)
+    throw Error("render: a filmstrip by phase needs one phase value per sample (" +
+                    std::to_string(o.phase.size()) + " for " + std::to_string(N) + ")",
+                "phase");
+  if (!std::isfinite(o.cycle) || o.cycle <= 0)
+    throw Error("render: the filmstrip's phase cycle must be finite and > 0", "cycle");
+  const double end = o.phase.back(), dir = end >= o.phase.front() ? 1.0 : -1.0;
+  const double start = end - dir * o.cycle;
+  if (dir * (o.phase.front() - start) > 0)
+    throw Error("render: the run covers " + std::to_string(std::abs(end - o.phase.front())) +
+                    " of the phase, less than one cycle (" + std::to_string(o.cycle) +
+                    "): no filmstrip by phase",
+                "cycle");
+  int k = N - 1;  // the last sample at or before the cycle's start
+  while (k > 0 && dir * (o.phase[static_cast<size_t>(k)] - start) > 0) --k;
+  std::vector<int> out;
+  for (int j = 0; j < o.frames; ++j) {
+    const double target = start + dir * o.cycle * j / o.frames;
+    while (k + 1 < N && dir * (o.phase[static_cast<size_t>(k) + 1] - target) <= 0) ++k;
+    const int best = k + 1 < N && std::abs(o.phase[static_cast<size_t>(k) + 1] - target) <
+                                      std::abs(o.phase[static_cast<size_t>(k)] - target)
+                         ? k + 1
+                         : k;
+    out.push_back(best);
+  }
+  return out;
+}
+
 Sheet layout(const Motion& motion, const FilmstripOptions& o) {
   if (o.frames < 1 && o.samples.empty())
     throw Error("render: a filmstrip needs at least one frame", "frames");
@@ -34,7 +65,8 @@ Sheet layout(const Motion& motion, const FilmstripOptions& o) {
                                : std::min<int>(o.columns, static_cast<int>(o.samples.size()));
     s.rows = (static_cast<int>(o.samples.size()) + s.columns - 1) / s.columns;
   }
-  for (int f = 0; f < o.frames && o.samples.empty(); ++f)
+  if (o.samples.empty() && !o.phase.empty()) s.samples = phase_samples(motion, o);
+  for (int f = 0; f < o.frames && o.samples.empty() && o.phase.empty(); ++f)
     s.samples.push_back(o.frames == 1 ? 0
                                       : static_cast<int>(std::lround(static_cast<double>(f) *
                                                                      (N - 1) / (o.frames - 1))));

@@ -1,6 +1,6 @@
 // One frame of a run, back to front: traces, ground rails, ground pivots, bodies (with their
-// slots), slider blocks, joints, centres of mass, effort symbols, loads, labels, then the time
-// stamp, scale bar and axes.
+// slots), slider blocks, joints, centres of mass, effort symbols, labels, loads (above all the
+// mechanism), then the time stamp, scale bar, axes and the legend of the load arrows.
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -8,6 +8,7 @@
 #include <numbers>
 
 #include "canvas.hpp"
+#include "labels.hpp"
 #include "mo2d/error.hpp"
 #include "plan.hpp"
 #include "symbols.hpp"
@@ -290,34 +291,45 @@ struct Painter {
     }
   }
 
+  // Body names beside their bodies, none over another (labels.hpp).
   void labels() const {
     if (!p.options.show_labels) return;
     font(0.9 * s.font_size, true);
-    for (int b = 0; b < static_cast<int>(p.model->bodies.size()); ++b) {
-      Vec2 c(0, 0);
-      double top = 1e300;
-      for (const NodeRef& n : p.model->bodies[b].nodes) {
-        c += node(n);
-        top = std::min(top, node(n).y());
-      }
-      c /= static_cast<double>(p.model->bodies[b].nodes.size());
-      set_colour(cr, dark_shade(body_colour(b)));
-      draw_text(cr, p.model->bodies[b].name, c.x() + px(s.body_width), c.y() - px(s.body_width), 0,
-                1);
+    cairo_font_extents_t fe;
+    cairo_font_extents(cr, &fe);
+    const auto nb = p.model->bodies.size();
+    std::vector<Vec2> anchors(nb, Vec2(0, 0)), sizes(nb, Vec2(0, 0));
+    for (size_t b = 0; b < nb; ++b) {
+      for (const NodeRef& n : p.model->bodies[b].nodes) anchors[b] += node(n);
+      anchors[b] /= static_cast<double>(p.model->bodies[b].nodes.size());
+      sizes[b] = Vec2(text_width(cr, p.model->bodies[b].name), 0.72 * fe.ascent + fe.descent);
+    }
+    const double m = px(p.options.margin);
+    const std::vector<LabelBox> boxes = place_labels(
+        anchors, sizes, px(s.body_width), {m, m, p.view.width - 2 * m, p.view.height - 2 * m});
+    for (size_t b = 0; b < nb; ++b) {
+      set_colour(cr, dark_shade(body_colour(static_cast<int>(b))));
+      draw_text(cr, p.model->bodies[b].name, boxes[b].x, boxes[b].y, 0, 0);
     }
   }
 
   void decorations(const Decorations& d) const {
     const double W = p.view.width, H = p.view.height, m = px(p.options.margin);
     set_colour(cr, s.ink);
+    double x = m;
+    if (d.time && !p.options.title.empty()) {
+      font(s.font_size);
+      draw_text(cr, p.options.title, x, m, 0, 0);
+      x += text_width(cr, p.options.title + (p.options.show_time ? "   " : ""));
+    }
     if (d.time && p.options.show_time) {
       font(s.font_size, true);
-      draw_text(cr, "t", m, m, 0, 0);
+      draw_text(cr, "t", x, m, 0, 0);
       const double tw = text_width(cr, "t");
       font(s.font_size);
       char buf[64];
       std::snprintf(buf, sizeof buf, " = %.*f s", p.time_decimals, p.motion->time[k]);
-      draw_text(cr, buf, m + tw, m, 0, 0);
+      draw_text(cr, buf, x + tw, m, 0, 0);
     }
     const double base = H - m - px(2);
     if (d.scale_bar && p.options.show_scale_bar) {
@@ -369,9 +381,10 @@ void draw_frame(cairo_t* cr, const FramePlan& plan, int k, const Decorations& de
   paint.joints();
   if (plan.options.show_com) paint.centres_of_mass();
   paint.efforts();
-  draw_loads(cr, plan, k);
   paint.labels();
+  draw_loads(cr, plan, k);  // above everything of the mechanism
   paint.decorations(decorations);
+  if (decorations.scale_bar && plan.options.show_scale_bar) draw_load_legend(cr, plan);
   cairo_restore(cr);
   check_status(cr, "drawing a frame");
 }

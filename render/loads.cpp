@@ -1,8 +1,10 @@
-// The applied loads of a frame (FrameOptions::show_loads): every force as an arrow from its point
-// along the force, every torque as a curved arrow around its body's centre of mass, both sized by
-// the value relative to the run's peak of that load, evaluated at each sample's (t, q0, q1).
+// The applied loads of a frame (FrameOptions::show_loads): every force as an arrow along the force
+// ending at its point (pushing on it, drawn above the bodies), every torque as a curved arrow
+// around its body's centre of mass, both sized by the value relative to the run's peak of that
+// load, evaluated at each sample's (t, q0, q1).
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <numbers>
 
 #include "canvas.hpp"
@@ -91,6 +93,8 @@ void arc(cairo_t* cr, const Vec2& c, double R, double ratio, double u, double w,
 
 }  // namespace
 
+// A force's arrow ends at its point (the force pushes on it), short of the pin drawn there; an
+// arrow shorter than its head is drawn as the head alone, so that a small force still shows.
 void draw_loads(cairo_t* cr, const FramePlan& p, int k) {
   if (p.forces.empty() && p.torques.empty()) return;
   const FrameStyle& s = p.options.style;
@@ -103,8 +107,10 @@ void draw_loads(cairo_t* cr, const FramePlan& p, int k) {
     const double ratio = std::min(F / p.force_peak[f], 1.0);
     const Vec2 e(a.force.x() / F, -a.force.y() / F);  // y down on screen
     const double w = P * s.line_width * (1.2 + 1.3 * ratio);
-    const double len = P * s.effort_length * ratio;
-    if (len > 0.5 * P) arrow(cr, to_pixel(p.view, a.at), e, len, w, P * 4.5 + 1.5 * w);
+    const double head = P * 4.5 + 1.5 * w;
+    const double len = std::max(P * s.effort_length * ratio, head);
+    const Vec2 tip = to_pixel(p.view, a.at) - P * (s.joint_radius + 1.0) * e;
+    arrow(cr, tip - len * e, e, len, w, head);
   }
   for (size_t q = 0; q < p.torques[k].size(); ++q) {
     const FramePlan::LoadAt& a = p.torques[k][q];
@@ -112,6 +118,54 @@ void draw_loads(cairo_t* cr, const FramePlan& p, int k) {
     const double ratio = std::min(std::abs(a.torque) / p.torque_peak[q], 1.0);
     const double w = P * s.line_width * (1.2 + 1.3 * ratio);
     arc(cr, to_pixel(p.view, a.at), P * s.effort_radius, ratio, a.torque, w, P * 4.5 + 1.5 * w);
+  }
+}
+
+int load_legend_lines(const FramePlan& p) {
+  int n = 0;
+  for (double peak : p.force_peak) n += peak > 0;
+  for (double peak : p.torque_peak) n += peak > 0;
+  return n;
+}
+
+namespace {
+
+std::string with_unit(double v, const char* unit) {
+  const double a = std::abs(v);
+  const char* prefix = a >= 1e6 ? "M" : a >= 1e3 ? "k" : a >= 1 || a == 0 ? "" : "m";
+  const double scale = a >= 1e6 ? 1e-6 : a >= 1e3 ? 1e-3 : a >= 1 || a == 0 ? 1 : 1e3;
+  char buf[64];
+  std::snprintf(buf, sizeof buf, "%.3g %s%s", v * scale, prefix, unit);
+  return buf;
+}
+
+}  // namespace
+
+// Under the time stamp, one line per load: the arrow (or arc) at the run's peak and its value.
+void draw_load_legend(cairo_t* cr, const FramePlan& p) {
+  if (load_legend_lines(p) == 0) return;
+  const FrameStyle& s = p.options.style;
+  const double P = p.P, m = P * p.options.margin, line = P * 1.4 * s.font_size;
+  double y = m + P * 1.6 * s.font_size + 0.5 * line;
+  cairo_select_font_face(cr, s.font.c_str(), CAIRO_FONT_SLANT_NORMAL, CAIRO_FONT_WEIGHT_NORMAL);
+  cairo_set_font_size(cr, P * 0.9 * s.font_size);
+  const double w = P * s.line_width * 2.5, head = P * 4.5 + 1.5 * w, len = P * s.effort_length;
+  for (size_t f = 0; f < p.force_peak.size(); ++f) {
+    if (p.force_peak[f] <= 0) continue;
+    set_colour(cr, s.load);
+    arrow(cr, {m, y}, {1, 0}, len, w, head);
+    draw_text(cr, " " + with_unit(p.force_peak[f], "N") + "  " + p.model->forces[f].name,
+              m + len + P * 2, y, 0, 0.5);
+    y += line;
+  }
+  for (size_t q = 0; q < p.torque_peak.size(); ++q) {
+    if (p.torque_peak[q] <= 0) continue;
+    set_colour(cr, s.load);
+    draw_text(cr,
+              "\u21BA 270\u00B0 = " + with_unit(p.torque_peak[q], "N\u00B7m") + "  " +
+                  p.model->torques[q].name,
+              m, y, 0, 0.5);
+    y += line;
   }
 }
 

@@ -58,6 +58,10 @@ void check_sample(const Motion& motion, int sample);
 // drawing at sample k (after the effort symbols).
 void plan_loads(FramePlan& p);
 void draw_loads(cairo_t* cr, const FramePlan& p, int k);
+// The legend of the load arrows (each load's symbol at its run's peak, with the value) under the
+// time stamp, and how many lines it takes.
+void draw_load_legend(cairo_t* cr, const FramePlan& p);
+int load_legend_lines(const FramePlan& p);
 // The chains of every sample (FramePlan::chains; chains.cpp) and their drawing at sample k (pitch
 // circles and spans, after the bodies).
 void plan_chains(FramePlan& p);

@@ -60,7 +60,9 @@ Pads pads(const FramePlan& p) {
   }
   Pads d;
   d.side = o.margin + around;
-  d.top = std::max(d.side, o.show_time ? o.margin + 1.6 * s.font_size : 0.0);
+  d.top = std::max(d.side, o.show_time || !o.title.empty() ? o.margin + 1.6 * s.font_size : 0.0);
+  if (o.show_scale_bar && load_legend_lines(p) > 0)  // the legend of the loads under the time
+    d.top = std::max(d.top, o.margin + (1.6 + 1.4 * load_legend_lines(p)) * s.font_size + around);
   d.bottom = std::max(d.side, o.margin + (ground_pivots ? 4.2 * s.joint_radius : 0.0));
   if (o.show_scale_bar || o.show_axes) d.bottom = std::max(d.bottom, o.margin + 2.2 * s.font_size);
   d.side *= p.P, d.top *= p.P, d.bottom *= p.P;

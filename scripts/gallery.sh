@@ -39,7 +39,15 @@ generate() {
       local stem name log
       stem=$(basename "$scene" .yaml)
       mkdir -p "$work/$stem"
-      log=$("$mo2d" render "$scene" --out "$work/$stem")
+      # a fast periodic motion: tiles at evenly spaced crank angles of the last cycle, not at
+      # evenly spaced times (which alias: the engine's crank turns ~24 times a second)
+      local extra=() note=""
+      case $stem in
+        engine)
+          extra=(--filmstrip-phase crank.angle --filmstrip-cycle 720deg)
+          note=" Filmstrip: the last cycle of crank.angle (720°), tiles 120° apart, not evenly spaced in time." ;;
+      esac
+      log=$("$mo2d" render "$scene" --out "$work/$stem" "${extra[@]}")
       name=$(sed -n 's/^mo2d render: \(inverse\|forward\) dynamics of \([^,]*\),.*/\2/p' <<<"$log")
       local plot=efforts what="inverse dynamics"
       if grep -q "^mo2d render: forward" <<<"$log"; then plot=energies; what="forward dynamics"; fi
@@ -51,7 +59,7 @@ generate() {
       describe "$scene"
       echo
       echo "[\`mechanisms/${stem}.yaml\`](../mechanisms/${stem}.yaml): ${what}," \
-        "$(sed -n 's/^mo2d render: [a-z]* dynamics of [^,]*, \(.*\)/\1/p' <<<"$log")."
+        "$(sed -n 's/^mo2d render: [a-z]* dynamics of [^,]*, \(.*\)/\1/p' <<<"$log").$note"
       echo
       echo "![${stem} filmstrip](gallery/${stem}_filmstrip.png)"
       echo

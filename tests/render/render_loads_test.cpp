@@ -92,23 +92,43 @@ TEST(RenderLoads, TracedNamedPointPassesThroughItsComputedPositions) {
       Error);
 }
 
-// The force at A points down, 34 pt (= 34 px = 0.34 m) long at the run's peak, half as long at
-// half the peak.
-TEST(RenderLoads, ForceArrowFollowsTheForceAndIsSizedByIt) {
-  const Model m = bar([](double t) { return t == 0 ? -2.0 : -1.0; }, Law::constant(0));
-  Motion mo = turning(m, 2);
-  mo.q0.row(1) = mo.q0.row(0);  // both samples at phi = 0: only the force differs
+// The force at A points down: its arrow ends at A (short of the pin, 3.4 + 1 pt = 0.044 m) and
+// starts 34 pt (= 34 px = 0.34 m) above at the run's peak, half as far at half the peak; drawn
+// above the bar, in the free space over A (an arrow from A along the force would lie on the bar's
+// extension below A). A force of 1/100 of the peak still shows its head.
+TEST(RenderLoads, ForceArrowPushesOnItsPointAndIsSizedByIt) {
+  const Model m =
+      bar([](double t) { return t == 0   ? -2.0
+                                : t == 1 ? -1.0
+                                         : -0.02; }, Law::constant(0));
+  Motion mo = turning(m, 3);
+  mo.q0.row(1) = mo.q0.row(0);  // all samples at phi = 0: only the force differs
+  mo.q0.row(2) = mo.q0.row(0);
   FrameOptions o = window();
   EXPECT_EQ(count(render_frame(m, mo, 0, o), kGreen), 0);  // loads not asked for
   o.show_loads = true;
   const Image peak = render_frame(m, mo, 0, o), half = render_frame(m, mo, 1, o);
-  EXPECT_EQ(at_world(peak, 0.5, -0.05), kGreen);  // the shaft below A (its head from 0.25 m)
-  EXPECT_EQ(at_world(peak, 0.5, -0.20), kGreen);
-  EXPECT_NE(at_world(peak, 0.5, 0.15), kGreen);   // nothing above A
-  EXPECT_NE(at_world(peak, 0.5, -0.36), kGreen);  // nor beyond its tip at 0.34 m
-  EXPECT_EQ(at_world(half, 0.5, -0.05), kGreen);
-  EXPECT_NE(at_world(half, 0.5, -0.20), kGreen);  // its tip at 0.17 m
+  EXPECT_EQ(at_world(peak, 0.5, 0.08), kGreen);   // the head just above A
+  EXPECT_EQ(at_world(peak, 0.5, 0.30), kGreen);   // the shaft
+  EXPECT_NE(at_world(peak, 0.5, -0.05), kGreen);  // nothing below A
+  EXPECT_NE(at_world(peak, 0.5, 0.40), kGreen);   // nor beyond its tail at 0.384 m
+  EXPECT_EQ(at_world(half, 0.5, 0.08), kGreen);
+  EXPECT_NE(at_world(half, 0.5, 0.25), kGreen);  // its tail at 0.214 m
   EXPECT_GT(count(peak, kGreen), count(half, kGreen));
+  const Image small = render_frame(m, mo, 2, o);
+  EXPECT_EQ(at_world(small, 0.5, 0.08), kGreen);
+  EXPECT_GT(count(small, kGreen), 10);
+}
+
+// The legend (with the scale bar) shows each load at its run's peak: a full-length arrow.
+TEST(RenderLoads, LegendShowsTheArrowAtThePeak) {
+  const Model m = bar(Law::constant(-2), Law::constant(0));
+  const Motion mo = turning(m, 1);
+  FrameOptions o = window();
+  o.show_loads = true;
+  const int without = count(render_frame(m, mo, 0, o), kGreen);
+  o.show_scale_bar = true;
+  EXPECT_GT(count(render_frame(m, mo, 0, o), kGreen), without + 34);
 }
 
 TEST(RenderLoads, TorqueArcIsDrawnAroundTheCentreOfMassAndNeedsTheVelocities) {
@@ -132,6 +152,21 @@ TEST(RenderLoads, LabelsWriteTheBodyNames) {
   const int without = count(render_frame(m, mo, 0, o), kPaper);
   o.show_labels = true;
   EXPECT_LT(count(render_frame(m, mo, 0, o), kPaper), without - 20);
+}
+
+// FrameOptions::title is written at the top left (the mode pictures' "mode 1: ... Hz").
+TEST(RenderLoads, TitleIsWrittenAtTheTopLeft) {
+  const Model m = bar(Law::constant(0), Law::constant(0));
+  const Motion mo = turning(m, 1);
+  FrameOptions o = window();
+  o.style.ink = rgb_hex(kGreen);
+  const Image plain = render_frame(m, mo, 0, o);
+  o.title = "mode 1: 2.5 Hz";
+  const Image titled = render_frame(m, mo, 0, o);
+  int changed = 0;
+  for (int y = 0; y < 30; ++y)
+    for (int x = 0; x < 100; ++x) changed += titled.at(x, y) != plain.at(x, y);
+  EXPECT_GT(changed, 40);
 }
 
 }  // namespace

@@ -81,6 +81,9 @@ struct FrameOptions {
   bool show_scale_bar = true;
   bool show_axes = true;
   bool show_labels = false;  // body names
+  // Text at the top left, before the time stamp (e.g. "mode 1: 2.31 Hz, damping ratio 0.052");
+  // empty: none.
+  std::string title{};
   // Applied forces (Model::forces: arrows from their points, of length style.effort_length at the
   // run's peak |F| of that force) and torques (Model::torques: arcs around their body's centre of
   // mass, sweeping up to 270 degrees at the run's peak, counter-clockwise for a positive torque),
@@ -123,6 +126,13 @@ struct FilmstripOptions {
   // number of tiles, equally spaced samples
   int frames = 6;
   std::vector<int> samples{};  // these samples instead (then `frames` is ignored)
+  // Tiles at evenly spaced values of a phase instead of evenly spaced times, so that a fast
+  // periodic motion is not aliased: one phase value per sample (e.g. a crank angle, monotonic)
+  // and its cycle (2 pi; a four-stroke engine: 4 pi). The tiles show the run's last whole cycle,
+  // at the samples nearest phase_end - cycle + j cycle / frames (j = 0 .. frames - 1). Error if
+  // the run covers less than one cycle.
+  std::vector<double> phase{};
+  double cycle = 0;
   // tiles per row (0: one row)
   int columns = 3;
   double gap = 4;           // points between tiles
