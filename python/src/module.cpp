@@ -178,4 +178,5 @@ PYBIND11_MODULE(_mo2d, m) {
   bind_system(m);
   bind_render(m);
   bind_modes(m);
+  bind_design(m);
 }
