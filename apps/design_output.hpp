@@ -3,6 +3,7 @@
 // `mo2d inverse|forward SCENE [--measures]` computes, the table it prints and its JSON section.
 #include <string>
 
+#include "mo2d/design.hpp"
 #include "mo2d/mo2d.hpp"
 #include "mo2d/scene.hpp"
 

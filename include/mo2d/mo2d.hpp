@@ -3,7 +3,6 @@
 #include "mo2d/budget.hpp"
 #include "mo2d/control.hpp"
 #include "mo2d/csv.hpp"
-#include "mo2d/design.hpp"
 #include "mo2d/dynamics.hpp"
 #include "mo2d/error.hpp"
 #include "mo2d/extremes.hpp"

@@ -14,7 +14,7 @@ namespace {
 std::string design_node(const Reader& r, const YAML::Node& map, const char* key,
                         const SystemInfo& info, const std::string& what) {
   const YAML::Node node = r.required(map, key, what);
-  const std::string label = r.string(node, what + "." + key);
+  std::string label = r.string(node, what + "." + key);
   if (std::find(info.nodes.begin(), info.nodes.end(), label) == info.nodes.end())
     r.fail(node,
            what + "." + key + ": undefined node '" + label + "'" + did_you_mean(label, info.nodes));

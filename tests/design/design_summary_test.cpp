@@ -7,6 +7,7 @@
 #include <cmath>
 #include <numbers>
 
+#include "mo2d/design.hpp"
 #include "mo2d/mo2d.hpp"
 
 namespace design_summary_test {

@@ -8,6 +8,7 @@
 #include <cmath>
 #include <numbers>
 
+#include "mo2d/design.hpp"
 #include "mo2d/mo2d.hpp"
 
 namespace four_bar_test {

@@ -10,6 +10,7 @@
 #include <numbers>
 #include <span>
 
+#include "mo2d/design.hpp"
 #include "mo2d/mechanisms.hpp"
 #include "mo2d/mo2d.hpp"
 
