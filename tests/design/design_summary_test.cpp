@@ -51,8 +51,11 @@ TEST(DesignSummary, CrankUnderGravityAtConstantSpeed) {
   EXPECT_NEAR(e.peak_to_peak, 2 * mgr, 1e-6 * mgr);
   EXPECT_NEAR(e.mean_speed, w, 1e-12 * w);
   EXPECT_NEAR(e.travel, 2 * kPi, 1e-12);
-  EXPECT_NEAR(e.energy_fluctuation, 2 * mgr, 1e-6 * mgr);
-  EXPECT_NEAR(e.flywheel_inertia, 2 * mgr / (cs * w * w), 1e-6 * 2 * mgr / (cs * w * w));
+  // the trapezoid rule's error on E(t) = m g r sin(w t): (w h)^2 / 12 = 8.2e-7 of it (measured
+  // 8.22e-7)
+  const double dE_rel = 1.5e-6;
+  EXPECT_NEAR(e.energy_fluctuation, 2 * mgr, dE_rel * 2 * mgr);
+  EXPECT_NEAR(e.flywheel_inertia, 2 * mgr / (cs * w * w), dE_rel * 2 * mgr / (cs * w * w));
   // the bearing load: magnitude and direction of the pivot's reaction
   const int load = run.output("pivot.load"), dir = run.output("pivot.load_angle");
   const int fx = run.reaction("pivot.Fx"), fy = run.reaction("pivot.Fy");
