@@ -94,11 +94,11 @@ struct FourBarDef {
 
 // What add_design_columns computes (the `design:` block of a scene, docs/design.md).
 struct DesignRequest {
-  std::vector<FourBarDef> four_bars{};
-  bool frame = false;            // frame.shaking.* columns
-  Vec2 moment_about{0, 0};       // the point of frame.shaking.M (m)
-  bool bearings = false;         // J.load, J.load_angle of every joint with Fx, Fy reactions
-  double speed_fluctuation = 0;  // > 0: the flywheel for this coefficient Cs (DesignSummary)
+  std::vector<FourBarDef> four_bars{};  // four-bar loops whose columns are written
+  bool frame = false;                   // frame.shaking.* columns
+  Vec2 moment_about{0, 0};              // the point of frame.shaking.M (m)
+  bool bearings = false;                // J.load, J.load_angle of every joint with Fx, Fy reactions
+  double speed_fluctuation = 0;         // > 0: the flywheel for this coefficient Cs (DesignSummary)
   // Whether nothing is requested.
   bool empty() const { return four_bars.empty() && !frame && !bearings && speed_fluctuation <= 0; }
 };
