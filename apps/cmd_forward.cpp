@@ -2,8 +2,10 @@
 // dynamics of a scene from its initial state; writes DIR/NAME_forward.csv and
 // DIR/NAME_forward.json (both or neither).
 #include <cstdio>
+#include <optional>
 
 #include "command.hpp"
+#include "design_output.hpp"
 #include "mo2d/mo2d.hpp"
 #include "scene_options.hpp"
 #include "summary.hpp"
@@ -30,10 +32,17 @@ int forward(const SceneOptions& o) {
   run.monitor = {};
   const std::vector<Extreme> extremes =
       locate_extremes(model, run, r, scene.outputs);  // the peaks between samples
+  std::optional<DesignSummary> design;                // the designer's measures (docs/design.md)
+  if (wants_design(scene, o.measures)) {              // (their columns after the extremes' columns)
+    const DesignRequest request = design_request(scene, o.measures);
+    add_design_columns(model, r, request);
+    design = design_summary(model, r, request);
+  }
   progress.finish();
   std::printf("mo2d forward dynamics: %s\n", model.name.c_str());
   print_forward_table(model, r, run);
   print_peaks_table(r, extremes);
+  if (design) print_design_table(r, *design);
   print_tracking_table(tracking_errors(scene, model, r));
   // all outputs land together or not at all (mo2d/output.hpp)
   OutputSet out;
@@ -43,7 +52,8 @@ int forward(const SceneOptions& o) {
                 r, o.units_row ? trajectory_csv_units(model, r) : std::vector<std::string>{}));
   if (scene.run.json)
     out.add(output_path(o, scene, "forward.json"),
-            forward_summary(o, scene, model, r, run, extremes));
+            forward_summary(o, scene, model, r, run, extremes,
+                            design ? design_json(r, *design) : std::string()));
   out.commit();
   for (const auto& path : out.paths()) std::printf("  wrote %s\n", path.c_str());
   return 0;
@@ -56,6 +66,9 @@ Command add_forward_command(CLI::App& app) {
   CLI::App* sub = app.add_subcommand(
       "forward", "Forward dynamics of a scene from its initial state under its loads and efforts");
   add_scene_options(sub, *o, true, RunFlags::forward);
+  sub->add_flag("--measures", o->measures,
+                "add the designer's measures: the frame's shaking force and moment, every joint's "
+                "bearing load, the efforts' RMS and peak-to-peak (docs/design.md)");
   sub->add_flag("--units-row", o->units_row,
                 "write the unit of every column as a second header line of the CSV (the JSON "
                 "summary lists them either way)");

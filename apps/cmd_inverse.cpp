@@ -1,8 +1,10 @@
 // mo2d inverse SCENE [--set name=value]... [--out DIR] [--units-row] [run settings]: inverse
 // dynamics of a scene; writes DIR/NAME_inverse.csv and DIR/NAME_inverse.json (both or neither).
 #include <cstdio>
+#include <optional>
 
 #include "command.hpp"
+#include "design_output.hpp"
 #include "mo2d/mo2d.hpp"
 #include "scene_options.hpp"
 #include "summary.hpp"
@@ -28,10 +30,17 @@ int inverse(const SceneOptions& o) {
   add_output_columns(model, r, scene.outputs);  // the columns the scene asks for
   const std::vector<Extreme> extremes =
       locate_extremes(model, scene.motion, run, r, scene.outputs);  // the peaks between samples
+  std::optional<DesignSummary> design;    // the designer's measures (docs/design.md)
+  if (wants_design(scene, o.measures)) {  // (their columns after the extremes' columns)
+    const DesignRequest request = design_request(scene, o.measures);
+    add_design_columns(model, r, request);
+    design = design_summary(model, r, request);
+  }
   progress.finish();
   std::printf("mo2d inverse dynamics: %s\n", model.name.c_str());
   print_inverse_table(model, r, run);
   print_peaks_table(r, extremes);
+  if (design) print_design_table(r, *design);
   // all outputs land together or not at all (mo2d/output.hpp)
   OutputSet out;
   if (scene.run.csv)
@@ -40,7 +49,8 @@ int inverse(const SceneOptions& o) {
                 r, o.units_row ? trajectory_csv_units(model, r) : std::vector<std::string>{}));
   if (scene.run.json)
     out.add(output_path(o, scene, "inverse.json"),
-            inverse_summary(o, scene, model, r, run, extremes));
+            inverse_summary(o, scene, model, r, run, extremes,
+                            design ? design_json(r, *design) : std::string()));
   out.commit();
   for (const auto& path : out.paths()) std::printf("  wrote %s\n", path.c_str());
   return 0;
@@ -53,6 +63,9 @@ Command add_inverse_command(CLI::App& app) {
   CLI::App* sub = app.add_subcommand(
       "inverse", "Inverse dynamics of a scene: efforts and reactions for its prescribed motion");
   add_scene_options(sub, *o, true, RunFlags::inverse);
+  sub->add_flag("--measures", o->measures,
+                "add the designer's measures: the frame's shaking force and moment, every joint's "
+                "bearing load, the efforts' RMS and peak-to-peak (docs/design.md)");
   sub->add_flag("--units-row", o->units_row,
                 "write the unit of every column as a second header line of the CSV (the JSON "
                 "summary lists them either way)");

@@ -19,6 +19,7 @@ struct SceneOptions {
   // the scene's run: block (RunOverride, mo2d/scene.hpp), in the order given
   std::vector<RunOverride> run{};
   bool units_row = false;  // inverse, forward: --units-row
+  bool measures = false;   // inverse, forward: --measures (frame and bearing loads, docs/design.md)
 };
 
 // Which run settings a subcommand lets the command line override (--KEY for each run key).

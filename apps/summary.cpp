@@ -82,7 +82,7 @@ json estimated_error(const Trajectory& r) {
 
 std::string inverse_summary(const SceneOptions& o, const Scene& s, const Model& m,
                             const Trajectory& r, const InverseOptions& run,
-                            const std::vector<Extreme>& extremes) {
+                            const std::vector<Extreme>& extremes, const std::string& design) {
   json j = header(o, s, m, "inverse", r);
   j["run"] = {{"t0", run.t0},
               {"duration", s.run.duration},
@@ -96,6 +96,7 @@ std::string inverse_summary(const SceneOptions& o, const Scene& s, const Model& 
   j["max_residuals"] = {{"position", any ? r.residuals.col(0).maxCoeff() : 0.0},
                         {"velocity", any ? r.residuals.col(1).maxCoeff() : 0.0},
                         {"acceleration", any ? r.residuals.col(2).maxCoeff() : 0.0}};
+  if (!design.empty()) j["design"] = json::parse(design);
   j["warnings"] = r.stats.warnings;
   j["cpu_seconds"] = r.stats.cpu_seconds;
   return j.dump(2) + "\n";
@@ -103,7 +104,7 @@ std::string inverse_summary(const SceneOptions& o, const Scene& s, const Model& 
 
 std::string forward_summary(const SceneOptions& o, const Scene& s, const Model& m,
                             const Trajectory& r, const ForwardOptions& run,
-                            const std::vector<Extreme>& extremes) {
+                            const std::vector<Extreme>& extremes, const std::string& design) {
   json j = header(o, s, m, "forward", r);
   j["run"] = {
       {"t0", run.t0},
@@ -143,6 +144,7 @@ std::string forward_summary(const SceneOptions& o, const Scene& s, const Model& 
                      {"stopped_by_event", r.stats.stopped_by_event},
                      {"t_end", r.stats.t_end},
                      {"warnings", r.stats.warnings}};
+  if (!design.empty()) j["design"] = json::parse(design);
   j["cpu_seconds"] = r.stats.cpu_seconds;
   return j.dump(2) + "\n";
 }

@@ -11,12 +11,13 @@
 
 namespace mo2d::cli {
 
-// extremes: locate_extremes of the run (the efforts', reactions' and output columns' peaks)
+// extremes: locate_extremes of the run (the efforts', reactions' and output columns' peaks);
+// design: the JSON text of its design measures (design_json), "" for none
 std::string inverse_summary(const SceneOptions& o, const Scene& s, const Model& m,
                             const Trajectory& r, const InverseOptions& run,
-                            const std::vector<Extreme>& extremes);
+                            const std::vector<Extreme>& extremes, const std::string& design = "");
 std::string forward_summary(const SceneOptions& o, const Scene& s, const Model& m,
                             const Trajectory& r, const ForwardOptions& run,
-                            const std::vector<Extreme>& extremes);
+                            const std::vector<Extreme>& extremes, const std::string& design = "");
 
 }  // namespace mo2d::cli

@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "mo2d/control.hpp"
+#include "mo2d/design.hpp"
 #include "mo2d/error.hpp"
 #include "mo2d/forward.hpp"
 #include "mo2d/inverse.hpp"
@@ -129,6 +130,9 @@ struct Scene {
   // `outputs:` the columns mo2d inverse / forward add to the CSV (add_output_columns): every
   // named point unless told otherwise, loads and centres of mass when asked.
   OutputRequest outputs{.all_points = true};
+  // `design:` the designer's measures mo2d inverse / forward add to the CSV and the JSON summary
+  // (add_design_columns, design_summary; mo2d/design.hpp, docs/design.md); none by default.
+  DesignRequest design{};
   // every label the scene writes, with its place (checked by build_scene_model)
   std::vector<LabelUse> labels{};
   // element name -> definition (run keys as "run.t0", "run.step", ...)

@@ -48,10 +48,12 @@ from ._mo2d import (  # noqa: F401  (the public API)
     crosscheck_forward,
     crosscheck_inverse,
     forward_dynamics,
+    four_bar,
     inverse_dynamics,
     linearize,
     modes,
     static_equilibrium,
+    transmission_angle,
     write_filmstrip,
     write_frame,
     write_plot,
@@ -81,6 +83,7 @@ __all__ = [
     "forward_dynamics", "inverse", "inverse_dynamics", "load_scene", "parse_scene", "sweep",
     "Equilibrium", "Mode", "StateSpace", "linearize", "modes", "static_equilibrium",
     "write_filmstrip", "write_frame", "write_plot", "write_series_plot",
+    "four_bar", "transmission_angle",
 ]
 __all__ += [
     "ForwardWorkspace", "InverseWorkspace", "Table", "efforts_from_inverse",

@@ -55,7 +55,7 @@ def _with(scene, settings, keys):
 
 
 def inverse(scene, *, t0=None, duration=None, samples=None, tolerance=None, max_steps=None,
-            max_seconds=None, max_memory=None):
+            max_seconds=None, max_memory=None, measures=False):
     """Inverse dynamics of a scene, as `mo2d inverse` runs it (no files written).
 
     scene: a mo2d.Scene (mo2d.load_scene). The run settings given replace the scene's run:
@@ -66,6 +66,10 @@ def inverse(scene, *, t0=None, duration=None, samples=None, tolerance=None, max_
     of the parameters (duration="2 * T"); None keeps the scene's. Returns a mo2d.Result;
     raises mo2d.Error naming the flag for a bad setting ("--duration: run.duration: must be >
     0 s"), and naming the time and the element for a failed run. Releases the GIL.
+    measures=True adds the designer's measures as `mo2d inverse --measures` does (the frame's
+    shaking force and moment, every joint's bearing load; the scene's design: block adds its
+    own either way): columns r["frame.shaking.Fx"], ..., and the summary r.design
+    (docs/design.md).
 
     Example::
 
@@ -74,12 +78,12 @@ def inverse(scene, *, t0=None, duration=None, samples=None, tolerance=None, max_
     """
     settings = dict(t0=t0, duration=duration, samples=samples, tolerance=tolerance,
                     max_steps=max_steps, max_seconds=max_seconds, max_memory=max_memory)
-    return _mo2d._inverse(_with(scene, settings, INVERSE_KEYS))
+    return _mo2d._inverse(_with(scene, settings, INVERSE_KEYS), measures)
 
 
 def forward(scene, *, t0=None, duration=None, samples=None, integrator=None, formulation=None,
             rtol=None, atol=None, step=None, max_steps=None, max_seconds=None, max_memory=None,
-            accuracy=None, error_estimate=None):
+            accuracy=None, error_estimate=None, measures=False):
     """Forward dynamics of a scene from its initial state, as `mo2d forward` runs it.
 
     scene: a mo2d.Scene. The run settings given replace the scene's for this run, as the
@@ -91,7 +95,7 @@ def forward(scene, *, t0=None, duration=None, samples=None, integrator=None, for
     r.stats["estimated_error"]), and the budgets max_steps, max_seconds (s), max_memory
     (bytes). None keeps the scene's. Returns a mo2d.Result with the energies; raises
     mo2d.Error naming the flag for a bad setting, the time and the variable for a failed
-    run. Releases the GIL.
+    run. Releases the GIL. measures=True: the designer's measures, as for mo2d.inverse.
 
     Example::
 
@@ -102,4 +106,4 @@ def forward(scene, *, t0=None, duration=None, samples=None, integrator=None, for
     settings = dict(t0=t0, duration=duration, samples=samples, integrator=integrator,
                     formulation=formulation, rtol=rtol, atol=atol, step=step, accuracy=accuracy,
                     error_estimate=error_estimate, max_steps=max_steps, max_seconds=max_seconds, max_memory=max_memory)
-    return _mo2d._forward(_with(scene, settings, FORWARD_KEYS))
+    return _mo2d._forward(_with(scene, settings, FORWARD_KEYS), measures)

@@ -271,6 +271,13 @@ void bind_results(py::module_& m) {
           "{label: {max, t_max, min, t_min, located, sampled_max, sampled_min}} of every effort, "
           "reaction and output column, located between the samples (computed on first read; "
           "mo2d/extremes.hpp)")
+      .def_property_readonly(
+          "design", &design_dict,
+          "The designer's measures of a scene run with a design: block or measures=True "
+          "(docs/design.md): {'efforts': {input: {mean, rms, peak_to_peak, mean_speed, travel, "
+          "energy_fluctuation, flywheel_inertia}}, 'four_bars': {name: {grashof, lengths, "
+          "limit positions, transmission angles}}, 'speed_fluctuation'}; None otherwise. The "
+          "columns (frame.shaking.Fx, J.load, L.transmission_angle, ...) are read as r[label].")
       .def_readonly("warnings", &Result::warnings,
                     "The build (sketch) warnings, then the run's, as the command line prints "
                     "them (list of str).")

@@ -65,7 +65,7 @@ std::shared_ptr<Model> scene_model(const Scene& s) {
   return std::make_shared<Model>(build_scene_model(s, b));
 }
 
-Result run_inverse(const Scene& scene) {
+Result run_inverse(const Scene& scene, bool measures) {
   auto model = scene_model(scene);
   if (static_cast<int>(scene.motion.size()) != model->dof)
     throw SceneError(Location{scene.file, 0, 0},
@@ -76,22 +76,31 @@ Result run_inverse(const Scene& scene) {
   check_scene_options(scene, *model, run);
   Trajectory r = inverse_dynamics(*model, scene.motion, run);
   add_output_columns(*model, r, scene.outputs);
+  const Eigen::Index n = r.outputs.cols();  // the design columns follow (not located)
+  const std::optional<DesignRequest> design = design_of(scene, measures);
+  if (design) add_design_columns(*model, r, *design);
   Result out = make_result(model, std::move(r));
-  out.locate = [model, motion = scene.motion, run, outputs = scene.outputs](const Trajectory& t) {
-    return locate_extremes(*model, motion, run, t, outputs);
+  out.design = design;
+  out.locate = [model, motion = scene.motion, run, outputs = scene.outputs,
+                n](const Trajectory& t) {
+    return locate_extremes(*model, motion, run, first_outputs(t, n), outputs);
   };
   return out;
 }
 
-Result run_forward(const Scene& scene) {
+Result run_forward(const Scene& scene, bool measures) {
   auto model = scene_model(scene);
   const ForwardOptions run = forward_options(scene, *model);
   check_scene_options(scene, *model, run);
   Trajectory r = forward_dynamics(*model, initial_state(scene, *model), run);
   add_output_columns(*model, r, scene.outputs);
+  const Eigen::Index n = r.outputs.cols();  // the design columns follow (not located)
+  const std::optional<DesignRequest> design = design_of(scene, measures);
+  if (design) add_design_columns(*model, r, *design);
   Result out = make_result(model, std::move(r));
-  out.locate = [model, run, outputs = scene.outputs](const Trajectory& t) {
-    return locate_extremes(*model, run, t, outputs);
+  out.design = design;
+  out.locate = [model, run, outputs = scene.outputs, n](const Trajectory& t) {
+    return locate_extremes(*model, run, first_outputs(t, n), outputs);
   };
   return out;
 }
@@ -238,11 +247,13 @@ void bind_scene(py::module_& m) {
       py::arg("text"), py::arg("file_name") = "<scene>", py::arg("overrides") = Overrides{},
       py::arg("run") = Overrides{});
   m.def(
-      "_inverse", [](const SourcedScene& s) { return run_inverse(s); }, py::arg("scene"),
+      "_inverse", [](const SourcedScene& s, bool measures) { return run_inverse(s, measures); },
+      py::arg("scene"), py::arg("measures") = false,
       py::call_guard<py::gil_scoped_release>(),
       "inverse dynamics of a scene, as `mo2d inverse` runs it (no files written)");
   m.def(
-      "_forward", [](const SourcedScene& s) { return run_forward(s); }, py::arg("scene"),
+      "_forward", [](const SourcedScene& s, bool measures) { return run_forward(s, measures); },
+      py::arg("scene"), py::arg("measures") = false,
       py::call_guard<py::gil_scoped_release>(),
       "forward dynamics of a scene from its initial state, as `mo2d forward` runs it");
   m.def(

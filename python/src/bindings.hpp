@@ -43,6 +43,9 @@ struct Result {
   // Result.extremes (a sweep that does not read them does not pay for them); its result.
   std::function<std::vector<Extreme>(const Trajectory&)> locate{};
   std::optional<std::vector<Extreme>> extremes{};
+  // Scene runs with a design: block or measures=True: what add_design_columns added (the
+  // columns are in trajectory.outputs); Result.design summarizes the run with it.
+  std::optional<DesignRequest> design{};
 };
 
 // A label that is not a column of a result (r["pivot.torq"]): raised as mo2d.ColumnError, a
@@ -63,6 +66,14 @@ void bind_system(py::module_& m);   // System, Law, Motion, build_model, runs
 void bind_render(py::module_& m);   // frames, filmstrips, plots to PNG/SVG/PDF
 void bind_view(py::module_& m);     // the viewer page, _repr_html_ and _repr_svg_ (bind_view.cpp)
 void bind_modes(py::module_& m);    // StateSpace, Mode, Equilibrium, linearize, modes
+void bind_design(py::module_& m);   // four_bar, transmission_angle (bind_design.cpp)
+// A scene's design request: its design: block, with measures also the frame and bearing loads;
+// none when neither is asked for.
+std::optional<DesignRequest> design_of(const Scene& scene, bool measures);
+// r with only its first n output columns (the scene's, without the design columns that follow).
+Trajectory first_outputs(const Trajectory& r, Eigen::Index n);
+// Result.design: the summary of the run's design measures (dict), None without a request.
+py::object design_dict(const Result& r);
 
 // A Result from a finished run (adds the model's build warnings in front of the run's).
 Result make_result(std::shared_ptr<Model> model, Trajectory trajectory);

@@ -179,4 +179,5 @@ PYBIND11_MODULE(_mo2d, m) {
   bind_render(m);
   bind_view(m);
   bind_modes(m);
+  bind_design(m);
 }

@@ -62,10 +62,14 @@ bool is_torsional_spring(const Model& m, std::string_view name) {
   return false;
 }
 
-// Output columns (mo2d/output_columns.hpp): loads, named points, centres of mass.
+// Output columns (mo2d/output_columns.hpp): loads, named points, centres of mass; and the design
+// columns (mo2d/design.hpp): shaking force and moment, bearing loads, four-bar angles.
 std::string output_unit(const Model& m, const std::string& label) {
   const auto field = [&](std::string_view f) { return ends_with(label, f); };
   if (field(".fx") || field(".fy") || field(".tension")) return "N";
+  if (field(".Fx") || field(".Fy") || field(".F") || field(".load")) return "N";
+  if (field(".M")) return "N·m";
+  if (field("_angle")) return "rad";
   if (field(".torque")) return "N·m";
   if (field(".power")) return "W";
   if (field(".length") || field(".x") || field(".y")) return "m";

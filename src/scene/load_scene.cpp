@@ -412,11 +412,11 @@ Scene parse_scene(std::string_view yaml, const std::string& file_name,
       throw SceneError(Location{file_name, 1, 1},
                        std::string("a scene is a map of keys (name, bodies, joints, ...), got ") +
                            type_name(doc));
-    r.check_keys(doc, {"name",         "parameters",  "tables",    "ground", "bodies",
-                       "joints",       "coordinates", "gears",     "racks",  "constraints",
-                       "loads",        "subsystems",  "instances", "motion", "initial",
-                       "efforts",      "controllers", "run",       "points", "outputs",
-                       "transmissions"},
+    r.check_keys(doc, {"name",          "parameters",  "tables",    "ground", "bodies",
+                       "joints",        "coordinates", "gears",     "racks",  "constraints",
+                       "loads",         "subsystems",  "instances", "motion", "initial",
+                       "efforts",       "controllers", "run",       "points", "outputs",
+                       "transmissions", "design"},
                  "scene");
     scene.name = doc["name"].IsDefined() ? r.string(doc["name"], "name") : "scene";
     read_parameters(r, doc["parameters"], doc["tables"], overrides, scene);
@@ -433,6 +433,7 @@ Scene parse_scene(std::string_view yaml, const std::string& file_name,
     read_efforts(r, doc["efforts"], scene);
     read_controllers(r, doc["controllers"], scene);
     read_outputs(r, doc["outputs"], info, scene);
+    read_design(r, doc["design"], info, scene);
     scene.elements = std::move(info.elements);
     scene.law_labels.insert(scene.law_labels.end(), info.law_labels.begin(), info.law_labels.end());
     scene.expression_labels = std::move(info.labels);

@@ -53,6 +53,8 @@ Law state_law(const Reader& r, const YAML::Node& node, const std::string& what,
 void read_points(const Reader& r, const YAML::Node& node, System& out, SystemInfo& info);
 // outputs: {loads, com, points} -> Scene::outputs (load_outputs.cpp).
 void read_outputs(const Reader& r, const YAML::Node& node, const SystemInfo& info, Scene& scene);
+// design: {four_bars, frame, bearings, speed_fluctuation} -> Scene::design (load_design.cpp).
+void read_design(const Reader& r, const YAML::Node& node, const SystemInfo& info, Scene& scene);
 // The `friction` entry of joint `name` (load_friction.cpp), if any, added to `out`.
 void read_joint_friction(const Reader& r, const YAML::Node& joint, const std::string& name,
                          bool revolute, System& out);
