@@ -25,7 +25,7 @@ void ContactRunner::count_event(double t, const std::string& who) {
                     " s (the last: contact '" + who + "'): the contacts chatter",
                 who, t);
   if (t - last_event_ <= 1e-12 * std::max(1.0, std::abs(t))) {
-    if (++same_instant_ > kChatter)
+    if (++same_instant_ > kContactChatter)
       throw Error("contact '" + who + "': " + std::to_string(same_instant_) +
                       " contact events at t = " + fmt(t) +
                       " s (the modes chatter at one instant): the contact problem has no "

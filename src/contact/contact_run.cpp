@@ -36,7 +36,7 @@ ContactRunner::ContactRunner(const Model& m, const std::vector<ContactDef>& defs
                 m.name);
   inner_.error_estimate = ErrorEstimate::off;
   scale_ = m.scale > 0 ? m.scale : 1.0;
-  tol_g_ = kGapTolerance * scale_;
+  tol_g_ = kContactGapTolerance * scale_;
   zeno_time_ = o.zeno_time > 0 ? o.zeno_time : 1e-5 * (inner_.t1 - inner_.t0);
   std::vector<CompiledContact> cs;
   for (const ContactDef& d : defs) {

@@ -16,7 +16,7 @@
 // located at g = -slack, deeper by any floor added at every bounce, gaining m g floor from
 // gravity each time (with a floor of 2e-11 m the Zeno ball of tests/contact/rigid_test.cpp
 // settled into bounces of 3.5e-6 s that gained what they lost; with 2.8e-12 m its accumulation
-// time came out 2.2e-7 s late). tol_g = kGapTolerance * Model::scale bounds the initial
+// time came out 2.2e-7 s late). tol_g = kContactGapTolerance * Model::scale bounds the initial
 // penetration and the excursions between step ends.
 #include <algorithm>
 #include <array>
@@ -31,8 +31,8 @@
 
 namespace mo2d::detail {
 
-inline constexpr double kGapTolerance = 1e-10;  // relative to Model::scale
-inline constexpr int kChatter = 8;              // events at one instant before the run is refused
+inline constexpr double kContactGapTolerance = 1e-10;  // relative to Model::scale
+inline constexpr int kContactChatter = 8;  // events at one instant before the run is refused
 
 class ContactRunner {
  public:
