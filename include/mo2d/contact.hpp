@@ -26,7 +26,9 @@ namespace mo2d {
 
 // The contact law (see the file's description).
 struct ContactLaw {
-  enum class Kind { compliant, rigid } kind = Kind::compliant;
+  // compliant (Lankarani-Nikravesh: a force while g < 0) or rigid (g >= 0 kept, Newton impacts)
+  enum class Kind { compliant, rigid };
+  Kind kind = Kind::compliant;  // the law's kind
   // compliant: stiffness K (N/m^n) and exponent n (3/2: Hertz's, for spheres and cylinders in
   // point contact)
   double stiffness = 0, exponent = 1.5;
@@ -60,8 +62,10 @@ struct ContactDef {
 // The gap of a contact at a state: g (m), g' = J q1 (m/s), J' q1 (m/s^2: g'' = J a1 + J' q1),
 // and J (n1, the gradient of g in the node coordinates; 0 for rotation rates).
 struct GapValue {
-  double g = 0, rate = 0, curvature = 0;
-  Eigen::VectorXd J{};
+  double g = 0;          // the gap (m; < 0: penetration)
+  double rate = 0;       // g' = J q1 (m/s)
+  double curvature = 0;  // J' q1 (m/s^2)
+  Eigen::VectorXd J{};   // d g / d q0 (n0; 0 for the rotation rates)
 };
 // The gap of contact c of model m at (q0, q1). Throws Error naming the contact for an unknown
 // point, a line of zero length, or a circle contact at coincident centres.
@@ -70,20 +74,23 @@ GapValue contact_gap(const Model& m, const ContactDef& c, const Eigen::VectorXd&
 
 // One event of a contact run.
 struct ContactEvent {
-  enum class Kind { onset, exit, impact, lift_off, zeno } kind = Kind::onset;
-  double t = 0;            // s
-  std::string contact;     // its name
-  double speed = 0;        // approach speed -g' before (m/s): onset, impact, zeno
-  double impulse = 0;      // impact: the impulse P (N s)
-  double energy_lost = 0;  // impact: the kinetic energy lost by the whole impact (J)
-  double predicted_t = 0;  // zeno: the accumulation time t_inf the impacts converge to (s)
+  // a compliant contact closes (onset) or opens (exit); a rigid one is hit (impact), lifts off
+  // (lift_off: its multiplier reached 0) or ends its accumulating impacts (zeno)
+  enum class Kind { onset, exit, impact, lift_off, zeno };
+  Kind kind = Kind::onset;  // what happened
+  double t = 0;             // s
+  std::string contact;      // its name
+  double speed = 0;         // approach speed -g' before (m/s): onset, impact, zeno
+  double impulse = 0;       // impact: the impulse P (N s)
+  double energy_lost = 0;   // impact: the kinetic energy lost by the whole impact (J)
+  double predicted_t = 0;   // zeno: the accumulation time t_inf the impacts converge to (s)
 };
 
 // The settings of a contact run: the forward options (integrator, tolerances, output times, ...;
 // stop_when and extra_forces are the contact stage's own and must be empty), and the contact
 // stage's limits.
 struct ContactOptions {
-  ForwardOptions forward{};
+  ForwardOptions forward{};  // the forward runs between events
   // events in a run before it is refused (a chattering contact)
   int max_events = 20000;
   // Zeno: a rigid contact whose last three impact intervals shrink by a steady ratio r < 1
@@ -100,8 +107,8 @@ struct ContactOptions {
 // A contact run: the trajectory (kind forward; the impacts' energy loss in energy.dissipated) and
 // its events in order.
 struct ContactRun {
-  Trajectory trajectory;
-  std::vector<ContactEvent> events;
+  Trajectory trajectory;             // the whole run, its legs joined
+  std::vector<ContactEvent> events;  // in time order
 };
 
 // Forward dynamics of m from `initial` with the contacts (see the file's description). Throws
