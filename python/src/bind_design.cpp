@@ -95,8 +95,7 @@ void bind_design(py::module_& m) {
       [](double ground, double input, double coupler, double output, double theta) {
         return transmission_angle({ground, input, coupler, output}, theta);
       },
-      py::arg("ground"), py::arg("input"), py::arg("coupler"), py::arg("output"),
-      py::arg("theta"),
+      py::arg("ground"), py::arg("input"), py::arg("coupler"), py::arg("output"), py::arg("theta"),
       "The transmission angle (rad, in [0, pi]) of a four-bar at input angle theta (rad from "
       "the ground line), by the cosine law; NaN where the loop does not close.");
 }

@@ -248,13 +248,11 @@ void bind_scene(py::module_& m) {
       py::arg("run") = Overrides{});
   m.def(
       "_inverse", [](const SourcedScene& s, bool measures) { return run_inverse(s, measures); },
-      py::arg("scene"), py::arg("measures") = false,
-      py::call_guard<py::gil_scoped_release>(),
+      py::arg("scene"), py::arg("measures") = false, py::call_guard<py::gil_scoped_release>(),
       "inverse dynamics of a scene, as `mo2d inverse` runs it (no files written)");
   m.def(
       "_forward", [](const SourcedScene& s, bool measures) { return run_forward(s, measures); },
-      py::arg("scene"), py::arg("measures") = false,
-      py::call_guard<py::gil_scoped_release>(),
+      py::arg("scene"), py::arg("measures") = false, py::call_guard<py::gil_scoped_release>(),
       "forward dynamics of a scene from its initial state, as `mo2d forward` runs it");
   m.def(
       "crosscheck",
