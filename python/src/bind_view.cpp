@@ -6,6 +6,7 @@
 #include <pybind11/stl.h>
 
 #include "bindings.hpp"
+#include "mo2d/render/animate.hpp"
 #include "mo2d/render/drawing.hpp"
 #include "mo2d/view.hpp"
 
@@ -79,6 +80,34 @@ void bind_view(py::module_& m) {
           py::arg("height") = 600,
           "Write the run's viewer page (viewer_html) to `path`, atomically: one HTML file that "
           "opens in any browser, nothing fetched from the network.")
+      .def(
+          "animate",
+          [](const Result& r, const std::string& path, double fps, double slow, int max_frames,
+             int width, int height, int threads) {
+            AnimationOptions a;
+            a.frame.width = width;
+            a.frame.height = height;
+            a.fps = fps;
+            a.slow = slow;
+            a.max_frames = max_frames;
+            a.threads = threads;
+            const AnimationInfo info = write_animation(*r.model, motion_of(r.trajectory), a, path);
+            py::dict d;
+            d["frames"] = info.frames;
+            d["width"] = info.width;
+            d["height"] = info.height;
+            d["fps"] = info.fps;
+            d["codec"] = info.codec;
+            return d;
+          },
+          py::arg("path"), py::arg("fps") = 30.0, py::arg("slow") = 1.0,
+          py::arg("max_frames") = 3000, py::arg("width") = 800, py::arg("height") = 600,
+          py::arg("threads") = 0,
+          "Write the run as an animation, as `mo2d render --animate` does: .webm (VP9), .mp4 "
+          "(H.264), .gif or .apng by the extension of `path`, frame i at t0 + i / (fps * slow), "
+          "written atomically. Returns a dict with 'frames', 'width', 'height', 'fps' and "
+          "'codec'. Raises mo2d.Error without FFmpeg's libraries (naming the packages), for an "
+          "unknown extension or more than max_frames frames.")
       .def(
           "_repr_html_",
           [](const Result& r) {

@@ -89,3 +89,17 @@ def test_a_system_and_a_model_display_as_svg_drawings():
     bad.add_revolute("pivot", "ground.Q", "link.O")
     with pytest.raises(mo2d.Error, match="ground.Q"):
         bad._repr_svg_()
+
+
+# Result.animate is `mo2d render --animate`: frame i at t0 + i / fps over the run, the file by
+# its extension, nothing written for an unknown one.
+def test_a_result_writes_its_animation(result, tmp_path):
+    t = result.t
+    info = result.animate(str(tmp_path / "run.gif"), fps=10, width=160, height=120)
+    expected = int((t[-1] - t[0]) * 10 + 1e-9) + 1
+    assert info["frames"] == expected and info["codec"] == "gif", info
+    assert (info["width"], info["height"]) == (160, 120)
+    assert (tmp_path / "run.gif").read_bytes()[:6] == b"GIF89a"
+    with pytest.raises(mo2d.Error):
+        result.animate(str(tmp_path / "run.xyz"), fps=10)
+    assert not (tmp_path / "run.xyz").exists()
