@@ -35,9 +35,9 @@ struct CrosscheckCliOptions {
   std::vector<std::string> reference_set{};  // name=value, mo2d's model only
   bool strict = false;
   bool forward = false;
-  bool step_set = false;             // --step given: the forward check does not refine it
-  double position_tolerance = 1e-2;  // --forward: max |com error| / Model::scale
-  double angle_tolerance = 2e-2;     // --forward: rad
+  bool step_set = false;  // --step given: the forward check does not refine it
+  double position_tolerance = kForwardPositionTolerance;  // --forward: max |com error| / size
+  double angle_tolerance = kForwardAngleTolerance;        // --forward: rad
 };
 
 // The cross-check's settings, with the scene's budgets (Box2D steps, wall time, result memory:
@@ -65,8 +65,7 @@ int forward_check(const CrosscheckCliOptions& o) {
   const EffortLaws efforts = forward_options(scene, build_model_of(scene)).efforts;
   const ForwardCrosscheck r = mo2d::crosscheck_forward(
       model, initial, scene.run.t0 + scene.run.duration, check_options(o, scene), samples, efforts);
-  const bool agree =
-      r.relative_position_error <= o.position_tolerance && r.max_angle_error <= o.angle_tolerance;
+  const bool agree = forward_agrees(r, o.position_tolerance, o.angle_tolerance);
   std::printf("mo2d forward cross-check against Box2D: %s\n", r.mechanism.c_str());
   if (!scene.efforts.empty() || !scene.controllers.empty())
     std::printf(

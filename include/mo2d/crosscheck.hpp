@@ -172,6 +172,16 @@ struct ForwardCrosscheck {
   Eigen::VectorXd energy_difference{};
   double mo2d_energy_error = 0, kinetic_peak = 0;
 };
+// The forward cross-check's tolerances by default (mo2d crosscheck --forward, Python's
+// crosscheck): the largest centre-of-mass error relative to the mechanism's size, and the largest
+// body angle error (rad).
+inline constexpr double kForwardPositionTolerance = 1e-2, kForwardAngleTolerance = 2e-2;
+// Whether the two engines agree: both largest errors within their tolerances.
+inline bool forward_agrees(const ForwardCrosscheck& r,
+                           double position_tolerance = kForwardPositionTolerance,
+                           double angle_tolerance = kForwardAngleTolerance) {
+  return r.relative_position_error <= position_tolerance && r.max_angle_error <= angle_tolerance;
+}
 // Why a forward cross-check disagrees, when Box2D is the cause: its branch switch
 // (ForwardCrosscheck::branch_switch), or, at the first instant an error exceeds its tolerance
 // (position relative to the size, angle in rad), a mechanical energy that differs from mo2d's by

@@ -45,10 +45,6 @@ inline pybind11::dict crosscheck_dict(const CrosscheckReport& r) {
   return d;
 }
 
-// The tolerances of `mo2d crosscheck --forward` (apps/cmd_crosscheck.cpp): the largest centre-of-
-// mass error relative to the mechanism's size, and the largest body angle error (rad).
-constexpr double kForwardPositionTolerance = 1e-2, kForwardAngleTolerance = 2e-2;
-
 // 'agree' as the command line judges it: both largest errors within their tolerances; when not,
 // 'box2d_cause' says whether Box2D is the cause (its branch switch or energy drift).
 inline pybind11::dict crosscheck_dict(const ForwardCrosscheck& r,
@@ -56,8 +52,7 @@ inline pybind11::dict crosscheck_dict(const ForwardCrosscheck& r,
                                       double angle_tolerance = kForwardAngleTolerance) {
   pybind11::dict d;
   d["mechanism"] = r.mechanism;
-  const bool agree =
-      r.relative_position_error <= position_tolerance && r.max_angle_error <= angle_tolerance;
+  const bool agree = forward_agrees(r, position_tolerance, angle_tolerance);
   d["agree"] = agree;
   d["position_tolerance"] = position_tolerance;
   d["angle_tolerance"] = angle_tolerance;

@@ -22,6 +22,7 @@
 #include "mo2d/error.hpp"
 #include "mo2d/jacobian.hpp"
 #include "mo2d/kinematics.hpp"
+#include "mo2d/run_stop.hpp"
 #include "run/run_budget.hpp"
 #include "run/time_grid.hpp"
 
@@ -306,8 +307,13 @@ void hop(CvodeUser& u, N_Vector y, double& t, double t_out, Restarts& r, RunStat
   HopWatch& w = u.hops;
   const double t_end = w.next_end(t, t_out);
   const State from{w.t_last, w.y_out.head(m.n0), w.y_out.segment(m.n0, m.n1)};
-  const HopResult h = hop_over(m, *u.o, from, t_end, u.o->max_seconds - u.budget->elapsed(),
-                               u.o->max_steps - taken - u.steps_before, w.ref_h);
+  HopResult h;
+  try {  // the hop runs on what is left of the run's budgets
+    h = hop_over(m, *u.o, from, t_end, u.o->max_seconds - u.budget->elapsed(),
+                 u.o->max_steps - taken - u.steps_before, w.ref_h);
+  } catch (const BudgetExhausted&) {  // named as the run's own budget, not the hop's remainder
+    u.budget->throw_exhausted(t, taken + u.steps_before, w.ref_h);
+  }
   Eigen::Map<VectorXd>(yd, w.y_out.size()) = w.y_out;
   Eigen::Map<VectorXd>(yd, m.n0) = h.state.q0;
   Eigen::Map<VectorXd>(yd + m.n0, m.n1) = h.state.q1;

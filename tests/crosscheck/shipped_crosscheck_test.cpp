@@ -45,7 +45,7 @@ SceneOutcome crosscheck_scene(const std::string& path, double seconds) {
       const ForwardCrosscheck r = crosscheck_forward(model, s0, s0.t + seconds, check, 11, efforts);
       out.compared = true;
       // the CLI's default tolerances (1e-2 of the size, 2e-2 rad)
-      out.agree = r.relative_position_error <= 1e-2 && r.max_angle_error <= 2e-2;
+      out.agree = forward_agrees(r);  // the command line's tolerances, 1e-2 and 2e-2 rad
       out.detail = "forward: position " + std::to_string(r.relative_position_error) + ", angle " +
                    std::to_string(r.max_angle_error) + " " + r.branch_switch;
     } else {
