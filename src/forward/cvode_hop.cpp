@@ -4,9 +4,9 @@
 // step size: four-bar chains of 11 to 40 loops collapsed to steps of 1e-8 ... 1e-35 s at their
 // flat position (t = 0.72 s), and the double four-bar at rtol 1e-12, at some tolerances and not
 // at others. Fixed-step rk4 steps over such instants (forward_rk.cpp: stages projected), so the
-// passage is handed to rk4 at the step CVODE took before the collapse, from the last output time
-// (forward_cvode.cpp: hop); CVODE restarts after it. The error over a hop is not controlled by
-// rtol: the run's warning names the hops, their steps and the time they covered.
+// passage is handed to rk4 at the step CVODE took before the collapse, from the last step CVODE
+// accepted (forward_cvode.cpp: hop); CVODE restarts after it. The error over a hop is not
+// controlled by rtol: the run's warning names the hops, their steps and the time they covered.
 #include "forward/cvode_hop.hpp"
 
 #include <algorithm>
@@ -50,11 +50,10 @@ double HopWatch::next_end(double t, double t_out) const {
   return std::min(t_out, t + kHopBeyond * ref_h);
 }
 
-void HopWatch::done(long hop_steps, double t_end) {
-  if (hops++ == 0) first = t_last;
+void HopWatch::done(long hop_steps, double t_start, double t_end) {
+  if (hops++ == 0) first = t_start;
   steps += hop_steps;
-  covered += t_end - t_last;
-  t_last = t_end;
+  covered += t_end - t_start;
   wanted = false;
   tiny_evals = 0;
 }

@@ -16,7 +16,7 @@ struct HopResult {
 };
 
 // The watch for collapses inside singular windows and the hops over them, of one cvode_bdf run
-// (forward_cvode.cpp). Sizes: y_out n (CVODE's vector: q0, q1, the energy terms).
+// (forward_cvode.cpp).
 struct HopWatch {
   bool allowed = false;  // can_hop, on cvode_bdf
   bool wanted = false;   // the last callback asked for a hop (due)
@@ -26,8 +26,6 @@ struct HopWatch {
   double ref_h = 0;
   long ref_steps = 0, last_regularized = 0, regularized_at = 0;
   int tiny_evals = 0;
-  VectorXd y_out;     // y at the last output time or hop's end: where a hop starts
-  double t_last = 0;  // s, its time
   // the hops made: count, the first's start (s), their steps, the time they covered (s)
   int hops = 0;
   double first = 0, covered = 0;
@@ -39,8 +37,8 @@ struct HopWatch {
   // Where a hop over a collapse reached at t ends: kHopBeyond recent steps past it, t_out if
   // sooner.
   double next_end(double t, double t_out) const;
-  void done(long hop_steps, double t_end);  // a hop from t_last to t_end taken
-  std::string warning() const;              // the run's warning about its hops
+  void done(long hop_steps, double t_start, double t_end);  // a hop from t_start to t_end taken
+  std::string warning() const;                              // the run's warning about its hops
 };
 
 // Whether a run may hand a passage to rk4: not with an event (stop_when) to locate, chains that

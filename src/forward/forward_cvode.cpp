@@ -295,8 +295,9 @@ void restart(CvodeUser& u, double t, N_Vector y, double t_out, Restarts& r, RunS
   reinit(u, t, y, t_out, r);
 }
 
-// The passage over a collapse at time t by rk4 (HopWatch::next_end); y and t at its end on
-// return, CVODE restarted there (a collapse again later: another hop).
+// The passage over a collapse by rk4 (HopWatch::next_end), from the last step CVODE accepted: on
+// a failed step CVode returns t = tn and y = y(tn), its Nordsieck array restored (cvHandleNFlag,
+// cvRestore). y and t at the hop's end on return, CVODE restarted there.
 void hop(CvodeUser& u, N_Vector y, double& t, double t_out, Restarts& r, RunStats& stats) {
   const Model& m = *u.m;
   if (!stats.warnings.empty() && stats.warnings.back().starts_with("error in CVODE"))
@@ -305,8 +306,9 @@ void hop(CvodeUser& u, N_Vector y, double& t, double t_out, Restarts& r, RunStat
   long taken = 0;
   CVodeGetNumSteps(u.mem, &taken);
   HopWatch& w = u.hops;
-  const double t_end = w.next_end(t, t_out);
-  const State from{w.t_last, w.y_out.head(m.n0), w.y_out.segment(m.n0, m.n1)};
+  const double t_start = t, t_end = w.next_end(t, t_out);
+  const State from{t, Eigen::Map<const VectorXd>(yd, m.n0),
+                   Eigen::Map<const VectorXd>(yd + m.n0, m.n1)};
   HopResult h;
   try {  // the hop runs on what is left of the run's budgets
     h = hop_over(m, *u.o, from, t_end, u.o->max_seconds - u.budget->elapsed(),
@@ -314,14 +316,12 @@ void hop(CvodeUser& u, N_Vector y, double& t, double t_out, Restarts& r, RunStat
   } catch (const BudgetExhausted&) {  // named as the run's own budget, not the hop's remainder
     u.budget->throw_exhausted(t, taken + u.steps_before, w.ref_h);
   }
-  Eigen::Map<VectorXd>(yd, w.y_out.size()) = w.y_out;
   Eigen::Map<VectorXd>(yd, m.n0) = h.state.q0;
   Eigen::Map<VectorXd>(yd + m.n0, m.n1) = h.state.q1;
   for (size_t k = 0; k < u.terms.size(); ++k) yd[m.n0 + m.n1 + k] += h.energies[u.terms[k]];
-  w.done(h.steps, t_end);
+  w.done(h.steps, t_start, t_end);
   u.steps_before += h.steps;
   t = t_end;
-  w.y_out = Eigen::Map<const VectorXd>(yd, w.y_out.size());  // the next hop starts here at most
   reinit(u, t, y, t_out, r);
 }
 
@@ -389,9 +389,9 @@ void run_cvode(const Model& m, ForwardData& d, const State& s0, const ForwardOpt
                                   bdf ? "loosen rtol/atol, or try dopri5 (non-stiff mechanisms)"
                                       : "loosen rtol/atol, or try cvode_bdf (stiff mechanisms)",
                                   terms));
-  CvodeUser user{&m, &d, VectorXd(m.n0), VectorXd(m.n1), terms, false, {}, &budget, mem, 0, nullptr,
-                 {}, {}};
-  user.o = &o;
+  CvodeUser user{
+      &m, &d, VectorXd(m.n0), VectorXd(m.n1), terms, false, {}, &budget, mem, 0, nullptr, {}, {},
+      &o, {}};
   user.hops.allowed = bdf && can_hop(m, o);
   check_flag(CVodeInit(mem, cv_rhs, o.t0, y), "CVodeInit", o.t0);
   check_flag(CVodeSetUserData(mem, &user), "CVodeSetUserData", o.t0);
@@ -431,8 +431,6 @@ void run_cvode(const Model& m, ForwardData& d, const State& s0, const ForwardOpt
   for (int k = 1; k < o.samples; ++k) {
     const double t_out = sample_time(o.t0, o.t1, o.samples, k);
     check_flag(CVodeSetStopTime(mem, t_out), "CVodeSetStopTime", t);
-    user.hops.y_out = Eigen::Map<const VectorXd>(yd, n);
-    user.hops.t_last = t;
     const int flag = advance(user, y, t_out, t, o.max_steps, restarts, d.stats);
     long taken = 0;
     CVodeGetNumSteps(mem, &taken);

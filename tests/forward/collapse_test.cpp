@@ -125,10 +125,11 @@ struct BdfRun {
   long steps = 0;
   std::string hops;
 };
-std::string bdf_chain(int n, double duration, double rtol, BdfRun& out) {
+std::string bdf_chain(int n, double duration, double rtol, BdfRun& out, int samples = 101) {
   const Scene scene = parse_scene(chain_scene(n, duration), "chain.yaml");
   const Model m = build_scene_model(scene);
   ForwardOptions o = forward_options(scene, m);
+  o.samples = samples;
   o.accuracy = 0, o.integrator = Integrator::cvode_bdf, o.rtol = rtol, o.atol = rtol / 100;
   o.max_steps = 30'000, o.max_seconds = 60, o.error_estimate = ErrorEstimate::off;
   Trajectory r;
@@ -168,8 +169,8 @@ TEST(ChainPassage, CvodeBdfPassesAtEveryTolerance) {
     int n;
     double duration, rtol, bound;  // bound: m, ~10 x the error measured on 2026-12-07
   };
-  // measured: 1.4e-5, 8.1e-8, 8.1e-10, 5.2e-6 (the double four-bar's ten passages amplify the
-  // error), 2.7e-8 (17 hops by rk4, whose error rtol does not control)
+  // measured: 1.3e-5, 8.1e-8, 1.6e-9 (one hop), 5.2e-6 (the double four-bar's ten passages amplify
+  // the error), 3.2e-8 (15 hops by rk4 over 0.35 s, whose error rtol does not control)
   for (const Case c : {Case{11, 1, 1e-6, 1e-4}, Case{11, 1, 1e-8, 1e-6}, Case{11, 1, 1e-10, 1e-8},
                        Case{2, 10, 1e-8, 1e-4}, Case{2, 10, 1e-12, 1e-6}}) {
     const double ref_y = chain_reference(c.n, c.duration);
@@ -177,6 +178,24 @@ TEST(ChainPassage, CvodeBdfPassesAtEveryTolerance) {
     EXPECT_EQ(bdf_chain(c.n, c.duration, c.rtol, r), "") << c.n << " loops, rtol " << c.rtol;
     EXPECT_NEAR(r.tip_y, ref_y, c.bound) << c.n << " loops, rtol " << c.rtol << "; " << r.hops;
   }
+}
+
+// The time the hops of a cvode_bdf run covered, read from its warning ("... steps over X s, ...").
+double hops_covered(const std::string& warning) {
+  const size_t at = warning.find(" steps over ");
+  return at == std::string::npos ? 0 : std::stod(warning.substr(at + 12));
+}
+
+// A hop starts from the last step CVODE accepted, not from the last output time: with two output
+// times (the double four-bar, 10 s at rtol 1e-12) the hops covered 9.04 s of the 10 before, by rk4
+// whose error rtol does not control; measured now 10 hops over 0.26 s, the tip 5.1e-9 from the
+// reduction.
+TEST(ChainPassage, CvodeBdfHopsStartAtTheLastAcceptedStep) {
+  BdfRun r;
+  ASSERT_EQ(bdf_chain(2, 10, 1e-12, r, 2), "");
+  EXPECT_FALSE(r.hops.empty());
+  EXPECT_LT(hops_covered(r.hops), 1.0) << r.hops;
+  EXPECT_NEAR(r.tip_y, chain_reference(2, 10), 1e-6) << r.hops;
 }
 
 // RunBudget: a step that collapses suddenly (1e-3 s, then 1e-14 s) ends the run after
