@@ -1,7 +1,7 @@
 # ctest driver for "readme.example": the first ```cpp block of README.md must be identical to
-# tests/consumer/main.cpp, which consumer.find_package compiles and runs, so the README's example
-# is known to compile and to work.
-#   cmake -DREADME=README.md -DMAIN=tests/consumer/main.cpp -P check_readme.cmake
+# tests/consumer/readme_main.cpp, which consumer.find_package compiles and runs on the README's
+# fourbar.yaml, so the README's example is known to compile and to work.
+#   cmake -DREADME=README.md -DMAIN=tests/consumer/readme_main.cpp -P check_readme.cmake
 file(READ "${README}" readme)
 file(READ "${MAIN}" main)
 set(fence "```cpp\n")

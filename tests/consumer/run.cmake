@@ -2,13 +2,13 @@
 # then configure, build and run the stand-alone consumer project (this folder) against it.
 #
 #   cmake -DMO2D_BUILD_DIR=<mo2d build tree> -DWORK_DIR=<scratch dir> -DCONSUMER_DIR=<this dir>
-#         [-DBUILD_TYPE=Release] [-DCXX_COMPILER=...] [-DSANITIZE_FLAGS="-fsanitize=..."]
+#         -DREADME=<README.md, whose fourbar.yaml the README's C++ example reads> [-DBUILD_TYPE=Release] [-DCXX_COMPILER=...] [-DSANITIZE_FLAGS="-fsanitize=..."]
 #         -P run.cmake
 #
 # SANITIZE_FLAGS: an mo2d built with MO2D_SANITIZE=ON is instrumented, and its static libraries
 # need the sanitizer runtimes at link time, so the consumer is compiled and linked with the same
 # flags (that is what a user of a sanitized build has to do too).
-foreach(var MO2D_BUILD_DIR WORK_DIR CONSUMER_DIR)
+foreach(var MO2D_BUILD_DIR WORK_DIR CONSUMER_DIR README)
   if(NOT ${var})
     message(FATAL_ERROR "run.cmake: ${var} is not set")
   endif()
@@ -19,7 +19,8 @@ endif()
 
 function(step name)
   message(STATUS "consumer test: ${name}")
-  execute_process(COMMAND ${ARGN} RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE out)
+  execute_process(COMMAND ${ARGN} RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE out
+                  WORKING_DIRECTORY "${WORK_DIR}")
   if(NOT rc EQUAL 0)
     message("${out}")
     message(FATAL_ERROR "consumer test: '${name}' failed (${rc})")
@@ -66,6 +67,24 @@ step("run the consumer" "${build}/pendulum")
 message("${step_output}")
 if(NOT step_output MATCHES "DOF 1")
   message(FATAL_ERROR "consumer test: unexpected output (no 'DOF 1')")
+endif()
+# The README's scene block (```yaml {file=fourbar.yaml}) next to the README's C++ example.
+file(READ "${README}" readme)
+set(fence "```yaml {file=fourbar.yaml}\n")
+string(FIND "${readme}" "${fence}" begin)
+if(begin LESS 0)
+  message(FATAL_ERROR "consumer test: ${README} has no ${fence}block")
+endif()
+string(LENGTH "${fence}" fence_length)
+math(EXPR begin "${begin} + ${fence_length}")
+string(SUBSTRING "${readme}" ${begin} -1 rest)
+string(FIND "${rest}" "```" end)
+string(SUBSTRING "${rest}" 0 ${end} scene)
+file(WRITE "${WORK_DIR}/fourbar.yaml" "${scene}")
+step("run the README's example" "${build}/readme_fourbar")
+message("${step_output}")
+if(NOT step_output MATCHES "work per revolution")
+  message(FATAL_ERROR "consumer test: unexpected output of readme_fourbar")
 endif()
 step("run the scene consumer" "${build}/scene_pendulum")
 message("${step_output}")
