@@ -1,7 +1,8 @@
-// mo2d plot CSV COLUMN... [-o OUT.png|svg|pdf] [--x COLUMN] [--title TEXT]: draws columns of a
-// CSV file written by mo2d (or any CSV with a header of names) against time, or against another
-// column, with the project's renderer (mo2d/render/plot.hpp). The axis labels carry the units:
-// from the CSV's units row (--units-row) or else from the JSON summary next to it
+// mo2d plot CSV COLUMN... [-o OUT.png|svg|pdf] [--x COLUMN] [--title TEXT] [--log-x] [--log-y]
+// [--markers]: draws columns of a CSV file written by mo2d (or any CSV with a header of names)
+// against time, or against another column, on linear or logarithmic axes (a cell "nan", or <= 0
+// on a log axis, is a gap), with the project's renderer (mo2d/render/plot.hpp). The axis labels
+// carry the units: from the CSV's units row (--units-row) or else from the JSON summary next to it
 // (NAME_inverse.json "columns"). An unknown column is a usage error (status 2) listing the close
 // names; a cell that is not a number is an error at its line and column (status 1).
 #include <algorithm>
@@ -27,6 +28,8 @@ struct PlotCliOptions {
   std::string out{};  // default: next to the CSV, STEM_plot.png
   std::string x{};    // default: t, else the first column
   std::string title{};
+  bool log_x = false, log_y = false;  // logarithmic axes (decades)
+  bool markers = false;               // a dot at every point
 };
 
 // A CSV file as read back: names, units (empty strings when the file has no units row), values.
@@ -164,7 +167,8 @@ int plot(const PlotCliOptions& o) {
   std::vector<std::string> units;
   for (const std::string& name : o.columns) {
     const std::size_t c = column_of(name, o.csv, d);
-    p.series.push_back(Series{.label = name, .x = d.columns[xc], .y = d.columns[c]});
+    p.series.push_back(
+        Series{.label = name, .x = d.columns[xc], .y = d.columns[c], .markers = o.markers});
     if (std::find(units.begin(), units.end(), d.units[c]) == units.end())
       units.push_back(d.units[c]);
   }
@@ -175,6 +179,12 @@ int plot(const PlotCliOptions& o) {
     for (std::size_t k = 0; k < o.columns.size(); ++k)
       p.series[k].label = with_unit(o.columns[k], d.units[column_of(o.columns[k], o.csv, d)]);
   p.legend = o.columns.size() > 1 || units.size() > 1;
+  p.x.log = o.log_x;
+  p.y.log = o.log_y;
+  if (std::error_code ec;
+      out.has_parent_path() && (std::filesystem::create_directories(out.parent_path(), ec), ec))
+    throw Error("plot: -o " + out.string() + ": cannot create the folder " +
+                out.parent_path().string() + ": " + ec.message());
   write_plot(p, out.string());
   std::printf("  wrote %s\n", out.string().c_str());
   return 0;
@@ -194,6 +204,9 @@ Command add_plot_command(CLI::App& app) {
                   "the plot: .png, .svg or .pdf (default: beside the CSV, STEM_plot.png)");
   sub->add_option("--x", o->x, "the column on the horizontal axis (default: t, else the first)");
   sub->add_option("--title", o->title, "the plot's title (default: the CSV's file name)");
+  sub->add_flag("--log-x", o->log_x, "logarithmic horizontal axis (values <= 0 are gaps)");
+  sub->add_flag("--log-y", o->log_y, "logarithmic vertical axis (values <= 0 are gaps)");
+  sub->add_flag("--markers", o->markers, "a dot at every point (tables: error against step)");
   return {sub, [o] { return plot(*o); }};
 }
 
