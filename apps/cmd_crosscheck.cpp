@@ -151,24 +151,24 @@ Command add_crosscheck_command(CLI::App& app) {
   sub->add_option("--position-tolerance", o->position_tolerance,
                   "--forward: largest centre-of-mass error, relative to the mechanism's size "
                   "(default 1e-2)")
-      ->check(CLI::PositiveNumber);
+      ->check(finite_positive());
   sub->add_option("--angle-tolerance", o->angle_tolerance,
                   "--forward: largest body angle error in rad (default 2e-2)")
-      ->check(CLI::PositiveNumber);
+      ->check(finite_positive());
   CLI::Option* step = sub->add_option("--step", o->step,
                                       "Box2D time step in s (default 1/2000; a forward check "
                                       "halves the default until no body turns more than 0.01 "
                                       "rad per step)")
-                          ->check(CLI::PositiveNumber);
+                          ->check(finite_positive());
   sub->add_option(
          "--point-mass-inertia", o->inertia_fraction,
          "give point masses on massless links I = f m L^2 in both engines (Box2D cannot "
          "turn a body without inertia; the comparison does not depend on f); default 1/12, "
          "0: refuse them")
-      ->check(CLI::NonNegativeNumber);
+      ->check(finite_non_negative());
   sub->add_option("--feedback-time", o->feedback_time,
                   "time constant of the motors' position feedback in s (0: none)")
-      ->check(CLI::NonNegativeNumber);
+      ->check(finite_non_negative());
   sub->add_option("--reference-set", o->reference_set,
                   "override a parameter in mo2d's model only (Box2D keeps the scene's value): "
                   "shows which modelling errors the cross-check detects; repeatable")

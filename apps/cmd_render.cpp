@@ -106,7 +106,7 @@ Command add_render_command(CLI::App& app) {
       ->check(CLI::IsMember({"inverse", "forward"}));
   sub->add_flag("--frames", o->frames, "also write every K-th frame as DIR/NAME_0001.png ...");
   sub->add_option("--every", o->every, "frame interval K in samples (default 10)")
-      ->check(CLI::PositiveNumber);
+      ->check(finite_positive());
   sub->add_option("--format", o->format, "filmstrip and plots: png (default), svg or pdf")
       ->check(CLI::IsMember({"png", "svg", "pdf"}));
   sub->add_flag("--video", o->video, "an MP4 from the frames (needs ffmpeg on PATH)");

@@ -8,6 +8,7 @@
 #include "mo2d/csv.hpp"
 #include "mo2d/error.hpp"
 #include "mo2d/render/animate.hpp"
+#include "scene_options.hpp"
 
 namespace mo2d::cli {
 
@@ -84,15 +85,15 @@ void add_animate_options(CLI::App* sub, AnimateCliOptions& o) {
                   "write an animation to this file instead of the filmstrip and plots: .webm "
                   "(VP9), .mp4 (H.264), .gif or .apng (needs FFmpeg's libraries)");
   sub->add_option("--fps", o.fps, "animation: frames per second (default 30)")
-      ->check(CLI::PositiveNumber);
+      ->check(finite_positive());
   sub->add_option("--slow", o.slow,
                   "animation: play this many times slower than real time (default 1)")
-      ->check(CLI::PositiveNumber);
+      ->check(finite_positive());
   sub->add_option("--plot", o.plot,
                   "animation: a column of the run (e.g. crank.torque) drawn below the frames "
                   "with a cursor at the frame's time");
   sub->add_option("--max-frames", o.max_frames, "animation: the most frames (default 3000)")
-      ->check(CLI::PositiveNumber);
+      ->check(finite_positive());
   sub->add_option("--filmstrip-phase", o.phase,
                   "filmstrip tiles at evenly spaced values of this coordinate (e.g. crank.angle) "
                   "over the run's last cycle, not at evenly spaced times");
@@ -100,7 +101,7 @@ void add_animate_options(CLI::App* sub, AnimateCliOptions& o) {
                   "the cycle of --filmstrip-phase: 360deg, 720deg (a four-stroke engine), 2pi, "
                   "or a length in m");
   sub->add_option("--threads", o.threads, "animation: threads drawing frames (default: the cores)")
-      ->check(CLI::NonNegativeNumber);
+      ->check(finite_non_negative());
   sub->add_option("--width", o.width, "animation: frame width in pixels (default 800)")
       ->check(CLI::Range(16, 8192));
   sub->add_option("--height", o.height, "animation: frame height in pixels (default 600)")
