@@ -24,8 +24,9 @@ for preset in release debug-asan; do
   stage "${preset}: configure"
   cmake --preset "${preset}"
   if [[ "${preset}" == release && "${style}" == 1 ]]; then
-    stage "style"
-    ./scripts/check-style.sh build
+    stage "style (compile commands file by file: preset tidy, build-tidy/, configured only)"
+    cmake --preset tidy >/dev/null
+    ./scripts/check-style.sh build-tidy
   fi
   stage "${preset}: build (${jobs} jobs)"
   cmake --build --preset "${preset}" -j "${jobs}"
