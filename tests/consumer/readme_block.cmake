@@ -1,0 +1,20 @@
+# readme_block(README FENCE OUT): the text of the first block of README that opens with the line
+# FENCE (e.g. "```cpp"), up to its closing ```, in OUT; a FATAL_ERROR if there is none or it is
+# not closed. Used by check_readme.cmake (the C++ example) and run.cmake (the scene it reads).
+function(readme_block readme fence out)
+  file(READ "${readme}" text)
+  set(opening "${fence}\n")
+  string(FIND "${text}" "${opening}" begin)
+  if(begin LESS 0)
+    message(FATAL_ERROR "${readme} has no ${fence} block")
+  endif()
+  string(LENGTH "${opening}" opening_length)
+  math(EXPR begin "${begin} + ${opening_length}")
+  string(SUBSTRING "${text}" ${begin} -1 rest)
+  string(FIND "${rest}" "```" end)
+  if(end LESS 0)
+    message(FATAL_ERROR "${readme}: the first ${fence} block is not closed")
+  endif()
+  string(SUBSTRING "${rest}" 0 ${end} block)
+  set(${out} "${block}" PARENT_SCOPE)
+endfunction()
