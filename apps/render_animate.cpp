@@ -1,11 +1,10 @@
-// `mo2d render --animate`: the options, the plot strip's column looked up among the run's CSV
-// columns, and the animation written (atomically) with its frame count and codec printed.
+// `mo2d render --animate`: the options, the plot strip (animation_plot) and the animation written
+// (atomically) with its frame count and codec printed.
 #include "render_animate.hpp"
 
 #include <chrono>
 #include <cstdio>
 
-#include "mo2d/csv.hpp"
 #include "mo2d/error.hpp"
 #include "mo2d/render/animate.hpp"
 #include "scene_options.hpp"
@@ -13,36 +12,6 @@
 namespace mo2d::cli {
 
 namespace {
-
-// The column `label` of the run (coordinates, rates, efforts, reactions, added outputs), with its
-// unit in the axis label.
-AnimationPlot plot_column(const Model& model, const Trajectory& r, const std::string& label) {
-  const std::pair<const std::vector<std::string>*, const Eigen::MatrixXd*> groups[] = {
-      {&r.coordinate_labels, &r.q0},
-      {&r.rate_labels, &r.q1},
-      {&r.input_labels, &r.efforts},
-      {&r.reaction_labels, &r.reactions},
-      {&r.output_labels, &r.outputs}};
-  const std::vector<std::string> labels = trajectory_csv_labels(r);
-  const std::vector<std::string> units = trajectory_csv_units(model, r);
-  for (const auto& [names, values] : groups)
-    for (size_t c = 0; c < names->size(); ++c) {
-      if ((*names)[c] != label) continue;
-      AnimationPlot p;
-      std::string unit;
-      for (size_t k = 0; k < labels.size() && k < units.size(); ++k)
-        if (labels[k] == label) unit = units[k];
-      p.label = unit.empty() ? label : label + " (" + unit + ")";
-      const Eigen::VectorXd v = values->col(static_cast<Eigen::Index>(c));
-      p.values.assign(v.data(), v.data() + v.size());
-      return p;
-    }
-  std::string known;
-  for (const auto& [names, values] : groups)
-    for (const auto& n : *names) known += (known.empty() ? "" : ", ") + n;
-  throw Error("render: --plot: the run has no column '" + label + "' (columns: " + known + ")",
-              label);
-}
 
 // "720deg", "4pi", "12.566": a cycle in the coordinate's unit (deg and pi: radians).
 double parse_cycle(const std::string& text) {
@@ -119,7 +88,7 @@ void write_run_animation(const Model& model, const Trajectory& run, const FrameO
   a.max_frames = o.max_frames;
   if (!o.plot.empty()) {
     a.plot = true;
-    a.strip = plot_column(model, run, o.plot);
+    a.strip = animation_plot(model, run, o.plot);
   }
   a.threads = o.threads;
   const auto start = std::chrono::steady_clock::now();

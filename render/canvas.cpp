@@ -48,6 +48,16 @@ void check_size(int width, int height, double dpi, const std::string& what) {
                 what);
 }
 
+void select_font(cairo_t* cr, const std::string& family, cairo_font_slant_t slant,
+                 cairo_font_weight_t weight) {
+  const bool pixels = cairo_surface_get_type(cairo_get_target(cr)) == CAIRO_SURFACE_TYPE_IMAGE;
+  std::string spelt = family;
+  for (char& c : spelt)
+    c = static_cast<char>(pixels ? std::toupper(static_cast<unsigned char>(c))
+                                 : std::tolower(static_cast<unsigned char>(c)));
+  cairo_select_font_face(cr, spelt.c_str(), slant, weight);
+}
+
 Canvas::Canvas(Format format, int width, int height, double dpi) : format_(format), dpi_(dpi) {
   check_size(width, height, dpi, "image");
   const double w_pt = width * 72.0 / dpi, h_pt = height * 72.0 / dpi;

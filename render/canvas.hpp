@@ -47,6 +47,14 @@ void check_size(int width, int height, double dpi, const std::string& what);
 void check_status(cairo_t* cr, const std::string& what);
 
 void set_colour(cairo_t* cr, const Rgb& c, double alpha = 1.0);
+// cairo_select_font_face, the family spelt in capitals on a pixel image and in small letters on
+// an SVG or PDF surface (fontconfig matches families whatever their case). Cairo 1.16 resolves a
+// toy font face once, with the font options of the first surface that draws with it, and keeps
+// it: with one spelling, an SVG drawn first (no hinting) left the text of every later PNG of the
+// process unhinted, so a picture's bytes depended on what the process drew before it. Two
+// spellings are two faces, each resolved with its own kind of surface.
+void select_font(cairo_t* cr, const std::string& family, cairo_font_slant_t slant,
+                 cairo_font_weight_t weight);
 Rgb mix(const Rgb& a, const Rgb& b, double t);  // (1 - t) a + t b
 
 // Text with its anchor: ax = 0 left, 0.5 centre, 1 right; ay = 0 top, 0.5 middle, 1 baseline.

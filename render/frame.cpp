@@ -69,9 +69,8 @@ struct Painter {
   double slot_width() const { return 2 * px(s.joint_radius + 0.35); }
 
   void font(double size_pt, bool italic = false) const {
-    cairo_select_font_face(cr, s.font.c_str(),
-                           italic ? CAIRO_FONT_SLANT_ITALIC : CAIRO_FONT_SLANT_NORMAL,
-                           CAIRO_FONT_WEIGHT_NORMAL);
+    detail::select_font(cr, s.font, italic ? CAIRO_FONT_SLANT_ITALIC : CAIRO_FONT_SLANT_NORMAL,
+                        CAIRO_FONT_WEIGHT_NORMAL);
     cairo_set_font_size(cr, px(size_pt));
   }
 

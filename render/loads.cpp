@@ -147,7 +147,7 @@ void draw_load_legend(cairo_t* cr, const FramePlan& p) {
   const FrameStyle& s = p.options.style;
   const double P = p.P, m = P * p.options.margin, line = P * 1.4 * s.font_size;
   double y = m + P * 1.6 * s.font_size + 0.5 * line;
-  cairo_select_font_face(cr, s.font.c_str(), CAIRO_FONT_SLANT_NORMAL, CAIRO_FONT_WEIGHT_NORMAL);
+  detail::select_font(cr, s.font, CAIRO_FONT_SLANT_NORMAL, CAIRO_FONT_WEIGHT_NORMAL);
   cairo_set_font_size(cr, P * 0.9 * s.font_size);
   const double w = P * s.line_width * 2.5, head = P * 4.5 + 1.5 * w, len = P * s.effort_length;
   for (size_t f = 0; f < p.force_peak.size(); ++f) {

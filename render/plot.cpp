@@ -58,9 +58,8 @@ struct Fonts {
   const Plot& p;
   double P;
   void set(double scale, bool bold = false, bool italic = false) const {
-    cairo_select_font_face(cr, p.font.c_str(),
-                           italic ? CAIRO_FONT_SLANT_ITALIC : CAIRO_FONT_SLANT_NORMAL,
-                           bold ? CAIRO_FONT_WEIGHT_BOLD : CAIRO_FONT_WEIGHT_NORMAL);
+    detail::select_font(cr, p.font, italic ? CAIRO_FONT_SLANT_ITALIC : CAIRO_FONT_SLANT_NORMAL,
+                        bold ? CAIRO_FONT_WEIGHT_BOLD : CAIRO_FONT_WEIGHT_NORMAL);
     cairo_set_font_size(cr, scale * p.font_size * P);
   }
 };

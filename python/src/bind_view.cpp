@@ -41,6 +41,43 @@ std::string iframe(const std::string& page, int width, int height) {
          "\"></iframe>";
 }
 
+// Result.animate's timing and size, and what its frames show (mo2d render --animate's flags).
+struct AnimationTiming {
+  double fps, slow;
+  int max_frames, width, height, threads;
+};
+struct AnimationContent {
+  bool loads, labels;
+  std::vector<std::string> traces;
+  std::string plot;  // empty: no plot strip
+};
+
+py::dict animate(const Result& r, const std::string& path, const AnimationTiming& t,
+                 const AnimationContent& c) {
+  AnimationOptions a;
+  a.frame.width = t.width;
+  a.frame.height = t.height;
+  a.frame.show_loads = c.loads;
+  a.frame.show_labels = c.labels;
+  a.frame.traces = c.traces;
+  a.fps = t.fps;
+  a.slow = t.slow;
+  a.max_frames = t.max_frames;
+  a.threads = t.threads;
+  if (!c.plot.empty()) {
+    a.plot = true;
+    a.strip = animation_plot(*r.model, r.trajectory, c.plot);
+  }
+  const AnimationInfo info = write_animation(*r.model, motion_of(r.trajectory), a, path);
+  py::dict d;
+  d["frames"] = info.frames;
+  d["width"] = info.width;
+  d["height"] = info.height;
+  d["fps"] = info.fps;
+  d["codec"] = info.codec;
+  return d;
+}
+
 std::string model_svg(const Model& m) {
   FrameOptions o;
   o.width = 480;
@@ -83,31 +120,26 @@ void bind_view(py::module_& m) {
       .def(
           "animate",
           [](const Result& r, const std::string& path, double fps, double slow, int max_frames,
-             int width, int height, int threads) {
-            AnimationOptions a;
-            a.frame.width = width;
-            a.frame.height = height;
-            a.fps = fps;
-            a.slow = slow;
-            a.max_frames = max_frames;
-            a.threads = threads;
-            const AnimationInfo info = write_animation(*r.model, motion_of(r.trajectory), a, path);
-            py::dict d;
-            d["frames"] = info.frames;
-            d["width"] = info.width;
-            d["height"] = info.height;
-            d["fps"] = info.fps;
-            d["codec"] = info.codec;
-            return d;
+             int width, int height, int threads, bool loads, const std::vector<std::string>& traces,
+             bool labels, const std::string& plot) {
+            return animate(r, path, {fps, slow, max_frames, width, height, threads},
+                           {loads, labels, traces, plot});
           },
           py::arg("path"), py::arg("fps") = 30.0, py::arg("slow") = 1.0,
           py::arg("max_frames") = 3000, py::arg("width") = 800, py::arg("height") = 600,
-          py::arg("threads") = 0,
+          py::arg("threads") = 0, py::arg("loads") = false,
+          py::arg("traces") = std::vector<std::string>{}, py::arg("labels") = false,
+          py::arg("plot") = std::string(),
           "Write the run as an animation, as `mo2d render --animate` does: .webm (VP9), .mp4 "
           "(H.264), .gif or .apng by the extension of `path`, frame i at t0 + i / (fps * slow), "
-          "written atomically. Returns a dict with 'frames', 'width', 'height', 'fps' and "
-          "'codec'. Raises mo2d.Error without FFmpeg's libraries (naming the packages), for an "
-          "unknown extension or more than max_frames frames.")
+          "written atomically. loads: draw the applied forces (arrows) and torques (arcs), "
+          "scaled by their peak over the run (--loads); traces: points whose paths are drawn, "
+          "as in write_frame (--trace); labels: the bodies' names (--labels); plot: a column of "
+          "the run (a CSV label, e.g. 'crank_pivot.torque') drawn in a strip below the frames "
+          "with a cursor at the frame's time, a third of the frame's height (--plot). Returns a "
+          "dict with 'frames', 'width', 'height', 'fps' and 'codec'. Raises mo2d.Error without "
+          "FFmpeg's libraries (naming the packages), for an unknown extension, trace or column, "
+          "or more than max_frames frames.")
       .def(
           "_repr_html_",
           [](const Result& r) {

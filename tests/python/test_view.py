@@ -103,3 +103,50 @@ def test_a_result_writes_its_animation(result, tmp_path):
     with pytest.raises(mo2d.Error):
         result.animate(str(tmp_path / "run.xyz"), fps=10)
     assert not (tmp_path / "run.xyz").exists()
+
+
+# Result.animate's loads, traces, labels and plot are `mo2d render --animate`'s --loads, --trace,
+# --labels and --plot: the same bytes as the command's file, not those of the plain animation.
+# The crank press: a pad force and a drag torque (loads), 0.5 s (6 frames at 10 frames/s).
+ANIMATE_OPTIONS = [
+    ({"loads": True}, ["--loads"]),
+    ({"traces": ["slider.B", "crank.A"]}, ["--trace", "slider.B,crank.A"]),
+    ({"labels": True}, ["--labels"]),
+    ({"plot": "crank_pivot.torque"}, ["--plot", "crank_pivot.torque"]),
+]
+ANIMATE_SIZE = {"fps": 10, "width": 320, "height": 240}
+
+
+@pytest.fixture(scope="module")
+def press():
+    from conftest import MECHANISMS
+    return mo2d.inverse(mo2d.load_scene(MECHANISMS / "crank_press.yaml", set={}))
+
+
+@pytest.mark.parametrize("kwargs, flags", ANIMATE_OPTIONS, ids=lambda x: str(x))
+def test_animate_options_are_those_of_the_command_line(press, tmp_path, mo2d_cli, kwargs, flags):
+    import subprocess
+
+    from conftest import MECHANISMS
+    plain, ours, theirs = tmp_path / "plain.gif", tmp_path / "ours.gif", tmp_path / "theirs.gif"
+    press.animate(str(plain), **ANIMATE_SIZE)
+    info = press.animate(str(ours), **ANIMATE_SIZE, **kwargs)
+    assert info["frames"] == 6, info
+    subprocess.run([mo2d_cli, "render", str(MECHANISMS / "crank_press.yaml"), "--out",
+                    str(tmp_path), "--animate", str(theirs), "--fps", "10", "--width", "320",
+                    "--height", "240", *flags], check=True, capture_output=True)
+    assert ours.read_bytes() == theirs.read_bytes(), kwargs
+    assert ours.read_bytes() != plain.read_bytes(), f"{kwargs} changed nothing"
+
+
+def test_animate_plot_strip_is_below_the_frames(press, tmp_path):
+    info = press.animate(str(tmp_path / "p.gif"), **ANIMATE_SIZE, plot="crank_pivot.torque")
+    assert (info["width"], info["height"]) == (320, 240 + 240 // 3), info
+
+
+def test_animate_unknown_trace_or_column_is_an_error_and_writes_nothing(press, tmp_path):
+    with pytest.raises(mo2d.Error, match="no point 'slider.nowhere'"):
+        press.animate(str(tmp_path / "t.gif"), **ANIMATE_SIZE, traces=["slider.nowhere"])
+    with pytest.raises(mo2d.Error, match=r"no column 'crank.tork' \(columns: .*crank_pivot.torque"):
+        press.animate(str(tmp_path / "c.gif"), **ANIMATE_SIZE, plot="crank.tork")
+    assert list(tmp_path.iterdir()) == []

@@ -20,6 +20,7 @@
 #include "mo2d/model.hpp"
 #include "mo2d/render/frame.hpp"
 #include "mo2d/render/image.hpp"
+#include "mo2d/trajectory.hpp"
 
 namespace mo2d {
 
@@ -29,6 +30,11 @@ struct AnimationPlot {
   std::vector<double> values{};  // one per sample of the Motion
   int height = 0;                // pixels; 0: a third of the frame's height
 };
+
+// The strip of the column `label` of a run (a CSV label: a coordinate, rate, effort, reaction or
+// added output, e.g. "crank.torque"), its unit in the axis label ("crank.torque (N·m)"). Error
+// for an unknown label, naming it and the run's columns.
+AnimationPlot animation_plot(const Model& model, const Trajectory& run, const std::string& label);
 
 // What an animation shows, its frame rate, speed and budget.
 struct AnimationOptions {
