@@ -123,8 +123,8 @@ void ContactRunner::impact(State& s, const std::vector<int>& closing) {
   for (int r = 0; r < k; ++r) {
     const int i = set[static_cast<size_t>(r)];
     if (mode(i) == ContactMode::persistent || (!(res.impulse[r] > 0) && rate[r] >= 0)) continue;
-    events_.push_back(
-        {ContactEvent::Kind::impact, s.t, name(i), -rate[r], res.impulse[r], res.energy_lost, 0});
+    events_.push_back({ContactEvent::Kind::impact, s.t, name(i), -rate[r], res.impulse[r],
+                       res.energy_lost, 0, res.rate[r]});
     if (predicted[static_cast<size_t>(r)] > 0)
       events_.push_back({ContactEvent::Kind::zeno, s.t, name(i), -rate[r], 0, 0,
                          predicted[static_cast<size_t>(r)]});

@@ -205,6 +205,22 @@ void ContactRunner::rewrite_last(const State& s) {
 
 namespace mo2d {
 
+const char* contact_event_name(ContactEvent::Kind kind) {
+  switch (kind) {
+    case ContactEvent::Kind::onset:
+      return "onset";
+    case ContactEvent::Kind::exit:
+      return "exit";
+    case ContactEvent::Kind::impact:
+      return "impact";
+    case ContactEvent::Kind::lift_off:
+      return "lift_off";
+    case ContactEvent::Kind::zeno:
+      break;
+  }
+  return "zeno";
+}
+
 ContactRun contact_dynamics(const Model& m, const std::vector<ContactDef>& contacts,
                             const State& initial, const ContactOptions& options) {
   if (contacts.empty())
