@@ -55,7 +55,7 @@ void print_contact_events(const std::vector<ContactEvent>& events) {
     if (e.kind == ContactEvent::Kind::impact && e.t != last) lost += e.energy_lost, last = e.t;
   }
   std::printf(
-      "  contact events: %zu (%d impacts, kinetic energy lost %.6g J; %d lift-offs; %d Zeno "
+      "  contact events: %zu (%d impacts dissipating %.6g J; %d lift-offs; %d Zeno "
       "accumulations; %d onsets, %d exits)\n",
       events.size(), count[2], lost, count[3], count[4], count[0], count[1]);
   std::printf("  %-16s %-9s %-16s %14s %14s %14s %14s\n", "t [s]", "event", "contact",

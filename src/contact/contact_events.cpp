@@ -115,6 +115,7 @@ void ContactRunner::impact(State& s, const std::vector<int>& closing) {
   const ImpactResult res = newton_impact(m_, s.t, s.q0, s.q1, J, rate, e, names);
   s.q1 = res.q1;
   off_[kDissipated] += res.energy_lost;
+  off_[kConstraintWork] += res.constraint_work;  // a driven constraint's impulses (impact.hpp)
   // a candidate that the impact left separating (another contact's impulse lifted it) stays open
   std::erase_if(candidates, [&](int i) {
     const auto r = std::find(set.begin(), set.end(), i) - set.begin();

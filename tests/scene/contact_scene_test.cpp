@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdio>
 #include <string>
 #include <vector>
 
@@ -93,6 +94,62 @@ TEST(ContactScene, SceneRunIsTheCoreContactRun) {
     EXPECT_EQ(run.events[k].speed, core.events[k].speed) << k;
   }
   EXPECT_NE(run.trajectory.stats.method.find("with contacts"), std::string::npos);
+}
+
+// mechanisms/cam_follower.yaml at omega: one turn of the cam through the scene path.
+SceneRun cam_follower_at(double omega, Scene& scene) {
+  char set[64];
+  std::snprintf(set, sizeof set, "omega=%.17g", omega);
+  const ParameterOverride o[] = {parse_override(set)};
+  scene = load_scene(MO2D_MECHANISMS_DIR "/cam_follower.yaml", o);
+  const Model model = build_scene_model(scene);
+  const ForwardOptions run = forward_options(scene, model);
+  check_scene_options(scene, model, run);
+  return scene_forward(scene, model, initial_state(scene, model), run);
+}
+
+// The cam follower (see the scene's header): the contact force N = m g + P0 + ecc (k - m w^2)
+// sin(w t) reaches 0 at the top of the lift at the critical speed w_c = sqrt((P0 + k ecc + m g) /
+// (m ecc)), where the spring force and the weight equal the follower's mass times the cam's
+// demanded acceleration ecc w^2. Below it: no event in a turn, the follower's face on the cam at
+// y = R + ecc sin(w t) at every sample; above it: one lift-off in the turn, where sin(w t) = (m g +
+// P0) / (ecc (m w^2 - k)), and each landing on the driven cam dissipates (1 - e^2) m v^2 / 2 (the
+// cam's speed is imposed: the follower's mass alone) and leaves at e v.
+TEST(ContactScene, CamFollowerLiftsOffAboveTheCriticalSpeed) {
+  Scene scene;
+  (void)cam_follower_at(100, scene);
+  const double ecc = scene_parameter(scene, "ecc"), R = scene_parameter(scene, "R");
+  const double m = scene_parameter(scene, "m"), k = scene_parameter(scene, "k");
+  const double P0 = scene_parameter(scene, "P0"), g = scene_parameter(scene, "g");
+  const double e = scene_parameter(scene, "e");
+  const double wc = std::sqrt((P0 + k * ecc + m * g) / (m * ecc));
+  for (const double ratio : {0.5, 0.9, 0.995, 1.005, 1.1, 1.5, 2.0}) {
+    const double w = ratio * wc;
+    const SceneRun run = cam_follower_at(w, scene);
+    const std::vector<ContactEvent> off = scene_events_of_kind(run, ContactEvent::Kind::lift_off);
+    const Trajectory& tr = run.trajectory;
+    EXPECT_LT(std::abs(energy_balance_error(tr)), 1e-9) << "w / w_c = " << ratio;
+    if (ratio < 1) {
+      EXPECT_TRUE(run.events.empty()) << "w / w_c = " << ratio << ": " << run.events.size();
+      const int iy = tr.column("follower.P.y");
+      for (Eigen::Index s = 0; s < tr.time.size(); ++s)
+        EXPECT_NEAR(tr.q0(s, iy), R + ecc * std::sin(w * tr.time[s]), 1e-9 * ecc)
+            << "w / w_c = " << ratio << ", t = " << tr.time[s];
+      continue;
+    }
+    ASSERT_EQ(off.size(), 1U) << "w / w_c = " << ratio;
+    const double t_off = std::asin((m * g + P0) / (ecc * (m * w * w - k))) / w;
+    EXPECT_NEAR(off[0].t, t_off, 1e-10) << "w / w_c = " << ratio;
+    for (const ContactEvent& hit : scene_events_of_kind(run, ContactEvent::Kind::impact)) {
+      const double v = hit.speed;
+      EXPECT_GT(hit.t, off[0].t);
+      // the Zeno accumulation's last impact is perfectly inelastic (e = 0, nothing after)
+      const double ek = hit.speed_after == 0 ? 0 : e;
+      EXPECT_NEAR(hit.energy_lost, (1 - ek * ek) * m * v * v / 2, 1e-9 * m * v * v + 1e-15)
+          << "w / w_c = " << ratio << ", t = " << hit.t;
+      EXPECT_NEAR(hit.speed_after, ek * v, 1e-9 * v) << "w / w_c = " << ratio << ", t = " << hit.t;
+    }
+  }
 }
 
 // A scene without contacts runs forward_dynamics as before: no events.
