@@ -57,6 +57,7 @@ CrosscheckOptions check_options(const CrosscheckCliOptions& o, const Scene& scen
 // The forward cross-check: the motion of both engines from the scene's initial state.
 int forward_check(const CrosscheckCliOptions& o) {
   const Scene scene = load_scene_with_overrides(o.scene);
+  refuse_contacts(scene, "the Box2D cross-check (Box2D shapes for contacts: issue 35, item 4)");
   build_model_of(scene);  // checks the scene's labels, prints the sketch's warnings
   const Model model = build_scene_model(scene, {.reduction = Reduction::none});
   const State initial = initial_state(scene, model);
@@ -100,6 +101,7 @@ int forward_check(const CrosscheckCliOptions& o) {
 
 int crosscheck(const CrosscheckCliOptions& o) {
   const Scene scene = load_scene_with_overrides(o.scene);
+  refuse_contacts(scene, "the Box2D cross-check (Box2D shapes for contacts: issue 35, item 4)");
   // the scene's run says which: forward (no motion, initial conditions) or inverse
   if (o.forward || scene.run.solve == Solve::forward) return forward_check(o);
   const Model model = build_model_of(scene);  // checks the scene's labels

@@ -24,16 +24,17 @@ int forward(const SceneOptions& o) {
   Progress progress("forward dynamics of '" + model.name + "'", run.t0, run.t1);
   run.progress = [&progress](double t) { progress.update(t); };
   run.monitor = [&progress](const RunProgress& p) { progress.report(p); };
-  Trajectory r = forward_dynamics(model, initial, run);
+  SceneRun ran = scene_forward(scene, model, initial, run);  // with the contacts, if any
+  Trajectory& r = ran.trajectory;
   if (scene.run.accuracy == 0 && !scene.run.method_set)  // no method named: kDefaultAccuracy
     r.stats.method = "default " + r.stats.method;
   add_output_columns(model, r, scene.outputs);  // the columns the scene asks for
   run.progress = {};
   run.monitor = {};
   const std::vector<Extreme> extremes =
-      locate_extremes(model, run, r, scene.outputs);  // the peaks between samples
-  std::optional<DesignSummary> design;                // the designer's measures (docs/design.md)
-  if (wants_design(scene, o.measures)) {              // (their columns after the extremes' columns)
+      scene_forward_extremes(scene, model, run, r);  // the peaks between samples
+  std::optional<DesignSummary> design;               // the designer's measures (docs/design.md)
+  if (wants_design(scene, o.measures)) {             // (their columns after the extremes' columns)
     const DesignRequest request = design_request(scene, o.measures);
     add_design_columns(model, r, request);
     design = design_summary(model, r, request);
@@ -44,6 +45,7 @@ int forward(const SceneOptions& o) {
   print_peaks_table(r, extremes);
   if (design) print_design_table(r, *design);
   print_tracking_table(tracking_errors(scene, model, r));
+  print_contact_events(ran.events);
   // all outputs land together or not at all (mo2d/output.hpp)
   OutputSet out;
   if (scene.run.csv)
@@ -53,7 +55,7 @@ int forward(const SceneOptions& o) {
   if (scene.run.json)
     out.add(output_path(o, scene, "forward.json"),
             forward_summary(o, scene, model, r, run, extremes,
-                            design ? design_json(r, *design) : std::string()));
+                            design ? design_json(r, *design) : std::string(), ran.events));
   out.commit();
   for (const auto& path : out.paths()) std::printf("  wrote %s\n", path.c_str());
   return 0;

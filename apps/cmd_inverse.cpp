@@ -16,6 +16,7 @@ namespace {
 
 int inverse(const SceneOptions& o) {
   const Scene scene = load_scene_with_overrides(o);
+  refuse_contacts(scene, "inverse dynamics");
   const Model model = build_model_of(scene);
   if (static_cast<int>(scene.motion.size()) != model.dof)
     throw SceneError(Location{scene.file, 0, 0},

@@ -100,6 +100,7 @@ void print_equilibrium(const Model& m, const Equilibrium& e) {
 
 int modes(const ModesCliOptions& o) {
   const Scene scene = load_scene_with_overrides(o.scene);
+  refuse_contacts(scene, "linearization and modes");
   const CommandBudget budget(scene);
   const Model model = build_model_of(scene);
   EquilibriumOptions eo;
@@ -221,6 +222,7 @@ int linearize_along_command(const ModesCliOptions& o, const TimeRange& tr);
 int linearize_command(const ModesCliOptions& o) {
   if (TimeRange tr; range_of(o.at, tr)) return linearize_along_command(o, tr);
   const Scene scene = load_scene_with_overrides(o.scene);
+  refuse_contacts(scene, "linearization and modes");
   const CommandBudget budget(scene);
   const Model model = build_model_of(scene);
   LinearizeOptions lo = linearize_options(o, scene, model);
@@ -274,6 +276,7 @@ Trajectory reference_run(const Scene& s, const Model& m, const TimeRange& tr,
 
 int linearize_along_command(const ModesCliOptions& o, const TimeRange& tr) {
   const Scene scene = load_scene_with_overrides(o.scene);
+  refuse_contacts(scene, "linearization and modes");
   const CommandBudget budget(scene);
   const Model model = build_model_of(scene);
   LinearizeOptions lo = linearize_options(o, scene, model);

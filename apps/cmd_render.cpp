@@ -64,7 +64,8 @@ int render(const RenderCliOptions& o) {
   if (forward) {
     const ForwardOptions run = forward_options(scene, model);
     check_scene_options(scene, model, run);
-    const Trajectory r = forward_dynamics(model, initial_state(scene, model), run);
+    // with the scene's contacts, if any
+    const Trajectory r = scene_forward(scene, model, initial_state(scene, model), run).trajectory;
     std::printf("mo2d render: forward dynamics of %s, %d samples over [%g, %g] s\n",
                 model.name.c_str(), static_cast<int>(r.time.size()), run.t0, run.t1);
     if (!o.animate.path.empty()) {

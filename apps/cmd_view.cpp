@@ -27,7 +27,8 @@ Trajectory solve(const ViewCliOptions& o, const Scene& scene, const Model& model
   if (forward) {
     const ForwardOptions run = forward_options(scene, model);
     check_scene_options(scene, model, run);
-    Trajectory r = forward_dynamics(model, initial_state(scene, model), run);
+    // with the scene's contacts, if any
+    Trajectory r = scene_forward(scene, model, initial_state(scene, model), run).trajectory;
     add_output_columns(model, r, scene.outputs);
     std::printf("mo2d view: forward dynamics of %s, %d samples over [%g, %g] s\n",
                 model.name.c_str(), static_cast<int>(r.time.size()), run.t0, run.t1);

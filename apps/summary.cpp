@@ -78,6 +78,29 @@ json estimated_error(const Trajectory& r) {
           {"cpu_seconds", st.estimate_cpu_seconds}};
 }
 
+// A contact run: its contacts (name, law, restitution) and events in time order.
+json contact_json(const Scene& s, const std::vector<ContactEvent>& events) {
+  json contacts = json::object();
+  for (const ContactDef& c : s.contacts)
+    contacts[c.name] = {{"law", c.law.kind == ContactLaw::Kind::rigid ? "rigid" : "compliant"},
+                        {"restitution", c.law.restitution}};
+  json list = json::array();
+  for (const ContactEvent& e : events) {
+    json item = {{"kind", contact_event_name(e.kind)},
+                 {"t", e.t},
+                 {"contact", e.contact},
+                 {"speed", e.speed}};
+    if (e.kind == ContactEvent::Kind::impact) {
+      item["speed_after"] = e.speed_after;
+      item["impulse"] = e.impulse;
+      item["energy_lost"] = e.energy_lost;
+    }
+    if (e.kind == ContactEvent::Kind::zeno) item["predicted_t"] = e.predicted_t;
+    list.push_back(item);
+  }
+  return {{"contacts", contacts}, {"events", list}};
+}
+
 }  // namespace
 
 std::string inverse_summary(const SceneOptions& o, const Scene& s, const Model& m,
@@ -104,7 +127,8 @@ std::string inverse_summary(const SceneOptions& o, const Scene& s, const Model& 
 
 std::string forward_summary(const SceneOptions& o, const Scene& s, const Model& m,
                             const Trajectory& r, const ForwardOptions& run,
-                            const std::vector<Extreme>& extremes, const std::string& design) {
+                            const std::vector<Extreme>& extremes, const std::string& design,
+                            const std::vector<ContactEvent>& events) {
   json j = header(o, s, m, "forward", r);
   j["run"] = {
       {"t0", run.t0},
@@ -145,6 +169,7 @@ std::string forward_summary(const SceneOptions& o, const Scene& s, const Model& 
                      {"t_end", r.stats.t_end},
                      {"warnings", r.stats.warnings}};
   if (!design.empty()) j["design"] = json::parse(design);
+  if (!s.contacts.empty()) j["contacts"] = contact_json(s, events);
   j["cpu_seconds"] = r.stats.cpu_seconds;
   return j.dump(2) + "\n";
 }

@@ -16,8 +16,11 @@ namespace mo2d::cli {
 std::string inverse_summary(const SceneOptions& o, const Scene& s, const Model& m,
                             const Trajectory& r, const InverseOptions& run,
                             const std::vector<Extreme>& extremes, const std::string& design = "");
+// events: a contact run's (scene_forward), written as "contacts": {"events": [...]} for a scene
+// with contacts
 std::string forward_summary(const SceneOptions& o, const Scene& s, const Model& m,
                             const Trajectory& r, const ForwardOptions& run,
-                            const std::vector<Extreme>& extremes, const std::string& design = "");
+                            const std::vector<Extreme>& extremes, const std::string& design = "",
+                            const std::vector<ContactEvent>& events = {});
 
 }  // namespace mo2d::cli

@@ -46,6 +46,33 @@ void print_tracking_table(const std::vector<TrackingError>& tracking) {
                 std::abs(e.max_error), e.t_max, e.final_error);
 }
 
+void print_contact_events(const std::vector<ContactEvent>& events) {
+  if (events.empty()) return;
+  int count[5] = {0, 0, 0, 0, 0};
+  double lost = 0, last = -1;
+  for (const ContactEvent& e : events) {
+    ++count[static_cast<int>(e.kind)];
+    if (e.kind == ContactEvent::Kind::impact && e.t != last) lost += e.energy_lost, last = e.t;
+  }
+  std::printf(
+      "  contact events: %zu (%d impacts dissipating %.6g J; %d lift-offs; %d Zeno "
+      "accumulations; %d onsets, %d exits)\n",
+      events.size(), count[2], lost, count[3], count[4], count[0], count[1]);
+  std::printf("  %-16s %-9s %-16s %14s %14s %14s %14s\n", "t [s]", "event", "contact",
+              "before [m/s]", "after [m/s]", "impulse [N s]", "lost [J]");
+  for (size_t k = 0; k < events.size() && k < kListedContactEvents; ++k) {
+    const ContactEvent& e = events[k];
+    std::printf("  %-16.10g %-9s %-16s %14.6g %14.6g %14.6g %14.6g", e.t,
+                contact_event_name(e.kind), e.contact.c_str(), e.speed, e.speed_after, e.impulse,
+                e.energy_lost);
+    if (e.kind == ContactEvent::Kind::zeno)
+      std::printf("  accumulation at t = %.10g s: persistent contact", e.predicted_t);
+    std::printf("\n");
+  }
+  if (events.size() > kListedContactEvents)
+    std::printf("  ... %zu more (all in the JSON summary)\n", events.size() - kListedContactEvents);
+}
+
 double energy_error(const Trajectory& r) {
   return energy_balance_error(r);
 }

@@ -20,6 +20,12 @@ void print_peaks_table(const Trajectory& r, const std::vector<Extreme>& extremes
 // The tracking error of each controller (input, coordinate, max |x - r| with its time, final).
 void print_tracking_table(const std::vector<TrackingError>& tracking);
 
+// A contact run's events (mo2d/contact.hpp): a count per kind, the energy the impacts lost, then
+// one line per event (time, kind, contact, approach speed before, separation speed after,
+// impulse, energy lost, Zeno's predicted time), the first kListedContactEvents of them.
+inline constexpr size_t kListedContactEvents = 40;
+void print_contact_events(const std::vector<ContactEvent>& events);
+
 // The shortest text that reads back to the same double (std::to_chars), as in mo2d's CSV files.
 std::string shortest(double v);
 

@@ -82,9 +82,13 @@ struct ContactEvent {
   std::string contact;      // its name
   double speed = 0;         // approach speed -g' before (m/s): onset, impact, zeno
   double impulse = 0;       // impact: the impulse P (N s)
-  double energy_lost = 0;   // impact: the kinetic energy lost by the whole impact (J)
+  double energy_lost = 0;   // impact: the energy its contact impulses dissipate, all contacts (J)
   double predicted_t = 0;   // zeno: the accumulation time t_inf the impacts converge to (s)
+  double speed_after = 0;   // impact: the separation speed g' after it (m/s; e * speed alone)
 };
+
+// The kind's name: "onset", "exit", "impact", "lift_off", "zeno".
+const char* contact_event_name(ContactEvent::Kind kind);
 
 // The settings of a contact run: the forward options (integrator, tolerances, output times, ...;
 // stop_when and extra_forces are the contact stage's own and must be empty), and the contact

@@ -57,4 +57,10 @@ std::vector<Extreme> locate_extremes(const Model& m, std::span<const Prescribed>
 std::vector<Extreme> locate_extremes(const Model& m, const ForwardOptions& options,
                                      const Trajectory& r, const OutputRequest& outputs = {});
 
+// The extremes of r's columns at its samples only, none evaluated between them (located_max and
+// located_min false unless the column has no curvature): for a run whose motion is not smooth
+// between its samples, which a re-integration would not reproduce (a contact run's impacts).
+std::vector<Extreme> sampled_extremes(const Model& m, const Trajectory& r,
+                                      const OutputRequest& outputs = {});
+
 }  // namespace mo2d

@@ -9,9 +9,11 @@
 #include <utility>
 #include <vector>
 
+#include "mo2d/contact.hpp"
 #include "mo2d/control.hpp"
 #include "mo2d/design.hpp"
 #include "mo2d/error.hpp"
+#include "mo2d/extremes.hpp"
 #include "mo2d/forward.hpp"
 #include "mo2d/inverse.hpp"
 #include "mo2d/model.hpp"
@@ -130,6 +132,13 @@ struct Scene {
   // `outputs:` the columns mo2d inverse / forward add to the CSV (add_output_columns): every
   // named point unless told otherwise, loads and centres of mass when asked.
   OutputRequest outputs{.all_points = true};
+  // `contacts:` unilateral contacts (mo2d/contact.hpp, docs/contact.md): a forward run of a scene
+  // with any is a contact run (scene_forward), in the order written
+  std::vector<ContactDef> contacts{};
+  std::vector<Location> contact_where{};  // where each contact is written (its name's key)
+  // the contact run's settings of `run:` (max_events, zeno_time, zeno_speed, baumgarte_rate); its
+  // forward options are the run's (scene_forward sets them)
+  ContactOptions contact{};
   // `design:` the designer's measures mo2d inverse / forward add to the CSV and the JSON summary
   // (add_design_columns, design_summary; mo2d/design.hpp, docs/design.md); none by default.
   DesignRequest design{};
@@ -210,5 +219,27 @@ std::vector<TrackingError> tracking_errors(const Scene& scene, const Model& mode
                                            const Trajectory& r);
 // Consistent initial state of a forward run (consistent_state with the scene's initial values).
 State initial_state(const Scene& scene, const Model& model);
+
+// A forward run of a scene: its trajectory and, with contacts, the contact events in time order.
+struct SceneRun {
+  Trajectory trajectory;             // the run (kind forward)
+  std::vector<ContactEvent> events;  // contacts: every onset, exit, impact, lift-off, Zeno
+};
+// Forward dynamics of the scene's model from `initial` with o (forward_options): forward_dynamics,
+// or, for a scene with contacts, contact_dynamics with them and the run's contact settings. An
+// accuracy asked for (o.accuracy, also the default) then runs the method options_for_accuracy
+// gives it, without the stiffness test and the error estimate (contact_dynamics takes a method;
+// stats.method says so). An error naming a contact before the run starts (a point it cannot find,
+// a contact that starts penetrating) is a SceneError at the contact's line.
+SceneRun scene_forward(const Scene& scene, const Model& model, const State& initial,
+                       const ForwardOptions& o);
+// The extremes of a forward run r of the scene (o: the options scene_forward ran): located
+// between the samples (locate_extremes), or for a scene with contacts the samples' own
+// (sampled_extremes: a re-integration between samples would not know the contacts).
+std::vector<Extreme> scene_forward_extremes(const Scene& scene, const Model& model,
+                                            const ForwardOptions& o, const Trajectory& r);
+// A SceneError at the scene's first contact if it has contacts: `what` (the cross-check, modes)
+// does not take them into account yet. Nothing for a scene without contacts.
+void refuse_contacts(const Scene& scene, const std::string& what);
 
 }  // namespace mo2d

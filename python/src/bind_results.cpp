@@ -278,6 +278,29 @@ void bind_results(py::module_& m) {
           "energy_fluctuation, flywheel_inertia}}, 'four_bars': {name: {grashof, lengths, "
           "limit positions, transmission angles}}, 'speed_fluctuation'}; None otherwise. The "
           "columns (frame.shaking.Fx, J.load, L.transmission_angle, ...) are read as r[label].")
+      .def_property_readonly(
+          "events",
+          [](const Result& r) {
+            py::list out;
+            for (const ContactEvent& e : r.events) {
+              py::dict x;
+              x["kind"] = contact_event_name(e.kind);
+              x["t"] = e.t;
+              x["contact"] = e.contact;
+              x["speed"] = e.speed;
+              x["speed_after"] = e.speed_after;
+              x["impulse"] = e.impulse;
+              x["energy_lost"] = e.energy_lost;
+              x["predicted_t"] = e.predicted_t;
+              out.append(x);
+            }
+            return out;
+          },
+          "The contact events of a scene run with contacts (docs/contact.md), in time order: a "
+          "list of dicts {kind: 'onset' | 'exit' | 'impact' | 'lift_off' | 'zeno', t (s), "
+          "contact, speed (approach speed before, m/s), speed_after (impact: separation speed "
+          "after, m/s), impulse (N s), energy_lost (J, the whole "
+          "impact's), predicted_t (Zeno: the accumulation time, s)}; [] otherwise.")
       .def_readonly("warnings", &Result::warnings,
                     "The build (sketch) warnings, then the run's, as the command line prints "
                     "them (list of str).")

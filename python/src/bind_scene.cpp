@@ -66,6 +66,7 @@ std::shared_ptr<Model> scene_model(const Scene& s) {
 }
 
 Result run_inverse(const Scene& scene, bool measures) {
+  refuse_contacts(scene, "inverse dynamics");
   auto model = scene_model(scene);
   if (static_cast<int>(scene.motion.size()) != model->dof)
     throw SceneError(Location{scene.file, 0, 0},
@@ -92,21 +93,24 @@ Result run_forward(const Scene& scene, bool measures) {
   auto model = scene_model(scene);
   const ForwardOptions run = forward_options(scene, *model);
   check_scene_options(scene, *model, run);
-  Trajectory r = forward_dynamics(*model, initial_state(scene, *model), run);
+  SceneRun ran = scene_forward(scene, *model, initial_state(scene, *model), run);  // contacts
+  Trajectory& r = ran.trajectory;
   add_output_columns(*model, r, scene.outputs);
   const Eigen::Index n = r.outputs.cols();  // the design columns follow (not located)
   const std::optional<DesignRequest> design = design_of(scene, measures);
   if (design) add_design_columns(*model, r, *design);
   Result out = make_result(model, std::move(r));
   out.design = design;
-  out.locate = [model, run, outputs = scene.outputs, n](const Trajectory& t) {
-    return locate_extremes(*model, run, first_outputs(t, n), outputs);
+  out.events = std::move(ran.events);
+  out.locate = [model, run, scene = std::make_shared<const Scene>(scene), n](const Trajectory& t) {
+    return scene_forward_extremes(*scene, *model, run, first_outputs(t, n));
   };
   return out;
 }
 
 // The inverse cross-check of `mo2d crosscheck SCENE` (apps/cmd_crosscheck.cpp), without files.
 CrosscheckReport run_crosscheck(const Scene& scene, double step) {
+  refuse_contacts(scene, "the Box2D cross-check (Box2D shapes for contacts: issue 35, item 4)");
   const Model model = build_scene_model(scene);
   if (static_cast<int>(scene.motion.size()) != model.dof)
     throw SceneError(Location{scene.file, 0, 0},
@@ -128,6 +132,7 @@ CrosscheckReport run_crosscheck(const Scene& scene, double step) {
 // (apps/cmd_crosscheck.cpp: forward_check): both engines from the scene's initial state, the
 // scene's efforts and controllers in both, compared at its samples; the step refined unless given.
 ForwardCrosscheck run_crosscheck_forward(const Scene& scene, double step, bool step_given) {
+  refuse_contacts(scene, "the Box2D cross-check (Box2D shapes for contacts: issue 35, item 4)");
   const Model model = build_scene_model(scene, {.reduction = Reduction::none});
   const State initial = initial_state(scene, model);
   const int samples = scene.run.samples > 0 ? scene.run.samples : 101;

@@ -46,6 +46,8 @@ struct Result {
   // Scene runs with a design: block or measures=True: what add_design_columns added (the
   // columns are in trajectory.outputs); Result.design summarizes the run with it.
   std::optional<DesignRequest> design{};
+  // Scene runs with contacts: the contact events in time order (Result.events)
+  std::vector<ContactEvent> events{};
 };
 
 // A label that is not a column of a result (r["pivot.torq"]): raised as mo2d.ColumnError, a

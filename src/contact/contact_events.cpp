@@ -115,6 +115,7 @@ void ContactRunner::impact(State& s, const std::vector<int>& closing) {
   const ImpactResult res = newton_impact(m_, s.t, s.q0, s.q1, J, rate, e, names);
   s.q1 = res.q1;
   off_[kDissipated] += res.energy_lost;
+  off_[kConstraintWork] += res.constraint_work;  // a driven constraint's impulses (impact.hpp)
   // a candidate that the impact left separating (another contact's impulse lifted it) stays open
   std::erase_if(candidates, [&](int i) {
     const auto r = std::find(set.begin(), set.end(), i) - set.begin();
@@ -123,8 +124,8 @@ void ContactRunner::impact(State& s, const std::vector<int>& closing) {
   for (int r = 0; r < k; ++r) {
     const int i = set[static_cast<size_t>(r)];
     if (mode(i) == ContactMode::persistent || (!(res.impulse[r] > 0) && rate[r] >= 0)) continue;
-    events_.push_back(
-        {ContactEvent::Kind::impact, s.t, name(i), -rate[r], res.impulse[r], res.energy_lost, 0});
+    events_.push_back({ContactEvent::Kind::impact, s.t, name(i), -rate[r], res.impulse[r],
+                       res.energy_lost, 0, res.rate[r]});
     if (predicted[static_cast<size_t>(r)] > 0)
       events_.push_back({ContactEvent::Kind::zeno, s.t, name(i), -rate[r], 0, 0,
                          predicted[static_cast<size_t>(r)]});

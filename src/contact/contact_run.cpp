@@ -157,6 +157,19 @@ ContactRun ContactRunner::run(const State& initial) {
                       " m at t = " + fmt(s.t) + " s (at most " + fmt(tol_g_) + " allowed)",
                   name(i), s.t);
   }
+  // a rigid contact at rest on its surface at the start (|g| <= tol_g, |g'| <= zeno_speed: a
+  // follower on its cam, a block on the floor) starts persistent where its multiplier pushes
+  // (settle), else open; without this it started open and took an impact at (nearly) no speed
+  std::vector<int> resting;
+  for (int i = 0; i < forces_->size(); ++i) {
+    const GapValue& g = forces_->gap(i, s.q0, s.q1);
+    if (law(i).kind == ContactLaw::Kind::rigid && std::abs(g.g) <= tol_g_ &&
+        std::abs(g.rate) <= co_.zeno_speed) {
+      loosen(i, s.q0);
+      resting.push_back(i);
+    }
+  }
+  settle(s, resting);
   const double h = (inner_.t1 - inner_.t0) / (N - 1);
   auto grid = [&](int k) { return sample_time(inner_.t0, inner_.t1, N, k); };
   while (filled_ < N) {
@@ -199,11 +212,28 @@ void ContactRunner::rewrite_last(const State& s) {
   out_.q1.row(k) = s.q1.transpose();
   out_.kinetic[k] = kinetic_energy(m_, s.q1);
   out_.dissipated[k] = off_[kDissipated];
+  out_.constraint_work[k] = off_[kConstraintWork];  // a driven constraint's impulses
 }
 
 }  // namespace mo2d::detail
 
 namespace mo2d {
+
+const char* contact_event_name(ContactEvent::Kind kind) {
+  switch (kind) {
+    case ContactEvent::Kind::onset:
+      return "onset";
+    case ContactEvent::Kind::exit:
+      return "exit";
+    case ContactEvent::Kind::impact:
+      return "impact";
+    case ContactEvent::Kind::lift_off:
+      return "lift_off";
+    case ContactEvent::Kind::zeno:
+      break;
+  }
+  return "zeno";
+}
 
 ContactRun contact_dynamics(const Model& m, const std::vector<ContactDef>& contacts,
                             const State& initial, const ContactOptions& options) {

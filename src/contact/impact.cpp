@@ -73,7 +73,8 @@ ImpactResult newton_impact(const Model& m, double t, const Eigen::VectorXd& q0,
                 names, t);
   out.q1 = q1 + X * out.impulse;
   out.rate = rate + W * out.impulse;
-  out.energy_lost = kinetic_energy(m, q1) - kinetic_energy(m, out.q1);
+  out.energy_lost = -out.impulse.dot(rate + out.rate) / 2;  // impact.hpp
+  out.constraint_work = kinetic_energy(m, out.q1) - kinetic_energy(m, q1) + out.energy_lost;
   if (!out.q1.allFinite())
     throw Error("impact of " + names + " at t = " + fmt(t) + " s: non-finite velocities after it",
                 names, t);

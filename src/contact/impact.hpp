@@ -12,7 +12,12 @@
 // (w_i = g'+_i + e_i g'-_i: a contact that pushes leaves at e times its approach speed; one that
 // does not push leaves at least as fast). A linear complementarity problem, solved exactly by
 // enumerating the active sets (2^k for k <= kMaxImpactContacts contacts; for a positive definite
-// W its solution is unique). The kinetic energy lost is K(v-) - K(v+) >= 0 for e <= 1.
+// W its solution is unique). The energy the contacts dissipate is minus their impulses' work,
+//   -sum_j P_j (g'-_j + g'+_j) / 2 >= 0 for e <= 1
+// (an impulse does the work P times the mean of the velocities before and after). It is the
+// kinetic energy lost, K(v-) - K(v+), unless a constraint moves by itself (a driven cam, A v + b =
+// 0 with b != 0): then its impulses do work too, K(v+) - K(v-) + lost, which a contact that lifts
+// the follower off a faster cam makes positive (the kinetic energy can grow at an impact).
 #include <Eigen/Core>
 #include <string>
 #include <vector>
@@ -28,10 +33,11 @@ inline constexpr int kMaxImpactContacts = 8;
 bool solve_lcp_enumerate(const Eigen::MatrixXd& W, const Eigen::VectorXd& q, Eigen::VectorXd& P);
 
 struct ImpactResult {
-  Eigen::VectorXd q1;       // v+
-  Eigen::VectorXd impulse;  // P per contact (N s)
-  Eigen::VectorXd rate;     // g'+ per contact (m/s)
-  double energy_lost = 0;   // J
+  Eigen::VectorXd q1;          // v+
+  Eigen::VectorXd impulse;     // P per contact (N s)
+  Eigen::VectorXd rate;        // g'+ per contact (m/s)
+  double energy_lost = 0;      // J, dissipated by the contacts' impulses
+  double constraint_work = 0;  // J, done by the other constraints' impulses (0 if none moves)
 };
 
 // The impact at (t, q0) with velocities q1 (v-), the contacts' gradients J (rows, k x n1), their

@@ -306,4 +306,14 @@ std::vector<Extreme> locate_extremes(const Model& m, const ForwardOptions& optio
   });
 }
 
+std::vector<Extreme> sampled_extremes(const Model& m, const Trajectory& r,
+                                      const OutputRequest& outputs) {
+  std::vector<std::string> labels;
+  const int nout = output_count(m, r, outputs);
+  const MatrixXd values = columns_of(r, nout, labels);
+  return locate(r, values, labels, [](int, int, int, MatrixXd&) {
+    throw Error("extremes: the samples only");  // no grid: each extreme its best sample
+  });
+}
+
 }  // namespace mo2d

@@ -278,11 +278,13 @@ void read_tables(Reader& r, const YAML::Node& node) {
 void read_run(const Reader& r, const YAML::Node& node, RunSettings& run,
               std::vector<std::pair<std::string, Location>>& elements) {
   if (!node.IsDefined() || node.IsNull()) return;
-  r.check_keys(node,
-               {"solve", "t0", "duration", "samples", "tolerance", "integrator", "formulation",
-                "rtol", "atol", "step", "outputs", "max_steps", "max_seconds", "max_memory",
-                "linear_algebra", "accuracy", "error_estimate"},
-               "run");
+  r.check_keys(
+      node,
+      {"solve",       "t0",         "duration",       "samples",  "tolerance",      "integrator",
+       "formulation", "rtol",       "atol",           "step",     "outputs",        "max_steps",
+       "max_seconds", "max_memory", "linear_algebra", "accuracy", "error_estimate", "max_events",
+       "zeno_time",   "zeno_speed", "baumgarte_rate"},
+      "run");
   // where each run key is written: errors found when the run's options are checked against the
   // model (check_scene_options) are reported there
   for (const auto& [key, value] : r.entries(node, "run"))
@@ -416,7 +418,7 @@ Scene parse_scene(std::string_view yaml, const std::string& file_name,
                        "joints",        "coordinates", "gears",     "racks",  "constraints",
                        "loads",         "subsystems",  "instances", "motion", "initial",
                        "efforts",       "controllers", "run",       "points", "outputs",
-                       "transmissions", "design"},
+                       "transmissions", "design",      "contacts"},
                  "scene");
     scene.name = doc["name"].IsDefined() ? r.string(doc["name"], "name") : "scene";
     read_parameters(r, doc["parameters"], doc["tables"], overrides, scene);
@@ -434,10 +436,12 @@ Scene parse_scene(std::string_view yaml, const std::string& file_name,
     read_controllers(r, doc["controllers"], scene);
     read_outputs(r, doc["outputs"], info, scene);
     read_design(r, doc["design"], info, scene);
+    read_contacts(r, doc["contacts"], info, scene);
     scene.elements = std::move(info.elements);
     scene.law_labels.insert(scene.law_labels.end(), info.law_labels.begin(), info.law_labels.end());
     scene.expression_labels = std::move(info.labels);
     read_run(r, doc["run"], scene.run, scene.elements);
+    read_contact_run(r, doc["run"], scene);
     check_accuracy_overrides(run_overrides, scene.run.accuracy > 0);
     for (const RunOverride& o : run_overrides) apply_run_override(r, o, scene);
   } catch (const YAML::DeepRecursion& e) {  // yaml-cpp's depth guard (its message: "bad file")

@@ -80,6 +80,11 @@ std::string body_of(const Reader& r, const YAML::Node& map, const char* key,
                     const std::string& what, const SystemInfo& info, bool ground_allowed);
 void read_chains(const Reader& r, const YAML::Node& chains, System& out, SystemInfo& info);
 
+// contacts: (load_contacts.cpp) -> scene.contacts, each named in info.elements; and the contact
+// run's keys of run: (max_events, zeno_time, zeno_speed, baumgarte_rate) -> scene.contact.
+void read_contacts(const Reader& r, const YAML::Node& node, SystemInfo& info, Scene& scene);
+void read_contact_run(const Reader& r, const YAML::Node& run, Scene& scene);
+
 // Fill `out` from `block`; root: gravity is allowed in loads.
 SystemInfo read_system(const Reader& r, const YAML::Node& block, System& out, bool root,
                        Subsystems& library);
