@@ -109,12 +109,13 @@ Scene SceneEvaluator::scene_at(std::span<const double> x) const {
 std::string SceneEvaluator::text_at(std::span<const double> x) const {
   const Scene s = scene_at(x);
   std::vector<std::pair<std::string, double>> values;
-  for (const auto& [name, value] : s.parameters) {
+  for (const auto& parameter : s.parameters) {
+    const std::string& name = parameter.first;
     const bool varied = std::any_of(o_.vary.begin(), o_.vary.end(),
                                     [&](const DesignVariable& v) { return v.name == name; });
     const bool fixed = std::any_of(o_.set.begin(), o_.set.end(),
                                    [&](const ParameterOverride& p) { return p.name == name; });
-    if (varied || fixed) values.emplace_back(name, value);
+    if (varied || fixed) values.push_back(parameter);
   }
   return set_parameter_values(text_, o_.scene, values);
 }

@@ -84,7 +84,9 @@ std::string set_parameter_values(std::string_view yaml, const std::string& file,
   for (const Edit& e : edits) text.replace(e.begin, e.end - e.begin, e.text);
   // read back: every replaced parameter has exactly its new value
   const Scene back = parse_scene(text, file);
-  for (const auto& [name, v] : values) {
+  for (const auto& value : values) {
+    const std::string& name = value.first;
+    const double v = value.second;
     const auto it = std::find_if(back.parameters.begin(), back.parameters.end(),
                                  [&](const auto& p) { return p.first == name; });
     if (it == back.parameters.end() || it->second != v)

@@ -208,6 +208,9 @@ TEST(Optimize, BadInputIsRefusedWithItsPlace) {
   o.subject_to = {"m_cw < 1"};
   EXPECT_NE(error_of(o).find("constraint 1 'm_cw < 1', column 6"), std::string::npos)
       << error_of(o);
+  o.subject_to = {"m_cw <= 1 + * 2"};  // the right side's column counts from the text's start
+  EXPECT_NE(error_of(o).find("constraint 1 'm_cw <= 1 + * 2', column 13"), std::string::npos)
+      << error_of(o);
   o.subject_to = {"m_cw <= 1 + rms.pivot.torqe"};
   EXPECT_NE(error_of(o).find("column 13: 'rms.pivot.torqe'"), std::string::npos) << error_of(o);
 }
