@@ -138,16 +138,16 @@ TEST(Optimize, BudgetsEndTheOptimization) {
   EXPECT_EQ(r.evaluations, 3);
   EXPECT_EQ(r.stop, "max_evals");
   EXPECT_TRUE(has_warning(r, "--max-evals"));
-  // wall time: evaluations made slow (30 ms each) against a budget of 0.1 s
+  // wall time: evaluations made slow (100 ms each) against a budget of 0.35 s
   o = crank("rms.frame.shaking.F^2", 0, 5);
   o.starts = 50;
-  o.max_seconds = 0.1;
+  o.max_seconds = 0.35;
   o.progress = [](const OptimizeProgress&) {
-    std::this_thread::sleep_for(std::chrono::milliseconds(30));
+    std::this_thread::sleep_for(std::chrono::milliseconds(100));
   };
   r = optimize_scene(o);
   EXPECT_EQ(r.stop, "max_seconds");
-  EXPECT_TRUE(has_warning(r, "wall-time budget of 0.1 s (--max-seconds) ran out"));
+  EXPECT_TRUE(has_warning(r, "wall-time budget of 0.35 s (--max-seconds) ran out"));
   EXPECT_LE(r.evaluations, 5);
   EXPECT_GE(r.evaluations, 1);
   EXPECT_EQ(r.x.size(), 1u);
