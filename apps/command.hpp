@@ -25,6 +25,7 @@ Command add_plot_command(CLI::App& app);
 Command add_modes_command(CLI::App& app);      // cmd_modes.cpp
 Command add_linearize_command(CLI::App& app);  // cmd_modes.cpp
 Command add_sweep_command(CLI::App& app);
-Command add_doctor_command(CLI::App& app);  // cmd_doctor.cpp
+Command add_optimize_command(CLI::App& app);  // cmd_optimize.cpp
+Command add_doctor_command(CLI::App& app);    // cmd_doctor.cpp
 
 }  // namespace mo2d::cli

@@ -14,8 +14,8 @@ namespace {
 
 namespace fs = std::filesystem;
 
-constexpr std::string_view kCoreCommands[] = {"info",  "inverse", "forward",
-                                              "sweep", "doctor",  "--version"};
+constexpr std::string_view kCoreCommands[] = {"info",     "inverse", "forward",  "sweep",
+                                              "optimize", "doctor",  "--version"};
 constexpr std::string_view kDrawingCommands[] = {"demo", "render", "view",     "crosscheck",
                                                  "plot", "modes",  "linearize"};
 

@@ -62,6 +62,7 @@ int main(int argc, char** argv) {  // NOLINT(bugprone-exception-escape)
   add(nullptr, "modes");
   add(nullptr, "linearize");
   add(add_sweep_command, "sweep");
+  add(add_optimize_command, "optimize");
   add(add_doctor_command, "doctor");
   // SIGINT/SIGTERM/SIGHUP remove the temporaries of unfinished output files (mo2d/output.hpp);
   // after the module, which installs its own handler for the files it writes

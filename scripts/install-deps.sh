@@ -32,6 +32,7 @@ packages=(
 # the rest: tests, benchmarks, style checks, the Python module and its tests, the API reference
 [[ $minimal == 1 ]] || packages+=(
   libavcodec-dev libavformat-dev libswscale-dev libavutil-dev  # FFmpeg 5.1: render --animate
+  libnlopt-dev               # NLopt 2.7: mo2d optimize (optional: without it the command says so)
   libgtest-dev               # GoogleTest: tests/
   libbenchmark-dev           # Google Benchmark: bench/
   clang-format clang-tidy    # LLVM 14: scripts/check-style.sh (.clang-format, .clang-tidy)

@@ -188,6 +188,14 @@ Scene parse_scene(std::string_view yaml, const std::string& file_name = "<scene>
                   std::span<const ParameterOverride> overrides = {},
                   std::span<const RunOverride> run_overrides = {});
 
+// The scene text `yaml` (read from `file`, for messages) with each parameter of `values` given
+// that number: its value's text replaced in place (the shortest text that reads back to the same
+// double), everything else kept (comments, layout, the other parameters, which follow it as
+// expressions). The result is read back and checked: a SceneError when a parameter is not in
+// the parameters: block or does not read back to its value.
+std::string set_parameter_values(std::string_view yaml, const std::string& file,
+                                 std::span<const std::pair<std::string, double>> values);
+
 // build_model() plus the checks that need the model: the labels the scene uses exist (else a
 // SceneError at their line, with a suggestion); a build error is reported against the file.
 Model build_scene_model(const Scene& scene, const BuildOptions& options = {});

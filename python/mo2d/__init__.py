@@ -85,6 +85,9 @@ __all__ = [
     "write_filmstrip", "write_frame", "write_plot", "write_series_plot",
     "four_bar", "transmission_angle",
 ]
+if hasattr(_mo2d, "optimize"):  # built with NLopt (libnlopt-dev)
+    from ._mo2d import optimize  # noqa: F401
+    __all__ += ["optimize"]
 __all__ += [
     "ForwardWorkspace", "InverseWorkspace", "Table", "efforts_from_inverse",
     "efforts_from_samples", "energy_balance", "energy_balance_error", "inverse_dynamics_lagrange",

@@ -61,14 +61,15 @@ struct ColumnError : Error {
 // ExpressionError into it, with the attributes element, time, file, line, column; ColumnError
 // into mo2d.ColumnError.
 void bind_errors(py::module_& m);
-void bind_interrupts();             // Ctrl-C during a run: KeyboardInterrupt (module.cpp)
-void bind_results(py::module_& m);  // Model, Result
-void bind_scene(py::module_& m);    // Scene, load_scene, inverse, forward, crosscheck
-void bind_system(py::module_& m);   // System, Law, Motion, build_model, runs
-void bind_render(py::module_& m);   // frames, filmstrips, plots to PNG/SVG/PDF
-void bind_view(py::module_& m);     // the viewer page, _repr_html_ and _repr_svg_ (bind_view.cpp)
-void bind_modes(py::module_& m);    // StateSpace, Mode, Equilibrium, linearize, modes
-void bind_design(py::module_& m);   // four_bar, transmission_angle (bind_design.cpp)
+void bind_interrupts();              // Ctrl-C during a run: KeyboardInterrupt (module.cpp)
+void bind_results(py::module_& m);   // Model, Result
+void bind_scene(py::module_& m);     // Scene, load_scene, inverse, forward, crosscheck
+void bind_system(py::module_& m);    // System, Law, Motion, build_model, runs
+void bind_render(py::module_& m);    // frames, filmstrips, plots to PNG/SVG/PDF
+void bind_view(py::module_& m);      // the viewer page, _repr_html_ and _repr_svg_ (bind_view.cpp)
+void bind_modes(py::module_& m);     // StateSpace, Mode, Equilibrium, linearize, modes
+void bind_design(py::module_& m);    // four_bar, transmission_angle (bind_design.cpp)
+void bind_optimize(py::module_& m);  // optimize (bind_optimize.cpp; with NLopt)
 // A scene's design request: its design: block, with measures also the frame and bearing loads;
 // none when neither is asked for.
 std::optional<DesignRequest> design_of(const Scene& scene, bool measures);

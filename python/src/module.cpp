@@ -180,4 +180,7 @@ PYBIND11_MODULE(_mo2d, m) {
   bind_view(m);
   bind_modes(m);
   bind_design(m);
+#ifdef MO2D_HAVE_NLOPT
+  bind_optimize(m);
+#endif
 }

@@ -2,7 +2,7 @@
 # DOC (docs/scene-format.md, "The command line"): a new flag cannot go undocumented.
 #   -DMO2D=path of mo2d   -DDOC=the document
 file(READ "${DOC}" doc)
-foreach(sub demo info inverse forward render view crosscheck plot)
+foreach(sub demo info inverse forward render view crosscheck plot optimize)
   execute_process(COMMAND ${MO2D} ${sub} --help OUTPUT_VARIABLE help RESULT_VARIABLE status)
   if(NOT status EQUAL 0)
     message(FATAL_ERROR "mo2d ${sub} --help: exit status ${status}")
