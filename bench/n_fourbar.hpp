@@ -7,11 +7,19 @@
 
 namespace mo2d::bench {
 
+// prefix followed by k ("crank3"), by appends: GCC 12 warns falsely (-Wrestrict, its bug 105329)
+// on "crank" + std::to_string(k) once inlined into a unity batch.
+inline std::string numbered(const char* prefix, int k) {
+  std::string name = prefix;
+  name += std::to_string(k);
+  return name;
+}
+
 inline System n_fourbar(int n) {
-  System s("fourbar_chain_" + std::to_string(n));
+  System s(numbered("fourbar_chain_", n));
   const double m = 1.0, L = 1.0, I = m * L * L / 12;
   for (int k = 0; k <= n; ++k) {
-    const std::string c = "crank" + std::to_string(k), o = "O" + std::to_string(k);
+    const std::string c = numbered("crank", k), o = numbered("O", k);
     s.add_ground_node(o, {double(k), 0.0});
     s.add_body({.name = c,
                 .nodes = {{"O", {double(k), 0.0}}, {"B", {double(k), L}}},
@@ -21,8 +29,8 @@ inline System n_fourbar(int n) {
     s.add_revolute({.name = c + "_pivot", .node_a = "ground." + o, .node_b = c + ".O"});
   }
   for (int k = 0; k < n; ++k) {
-    const std::string cp = "coupler" + std::to_string(k + 1);
-    const std::string left = "crank" + std::to_string(k), right = "crank" + std::to_string(k + 1);
+    const std::string cp = numbered("coupler", k + 1);
+    const std::string left = numbered("crank", k), right = numbered("crank", k + 1);
     s.add_body({.name = cp,
                 .nodes = {{"A", {double(k), L}}, {"B", {double(k + 1), L}}},
                 .mass = m,
