@@ -31,6 +31,8 @@ anim_size=(--width 320 --height 240 --fps 10 --loads)
 anim_options() {
   case $1 in
     crank_press) echo "--slow 8" ;;
+    # one turn of the cam in 63 ms: 50 times slower (3.1 s, the lift-off and the landings seen)
+    cam_follower) echo "--slow 50" ;;
     chain_drive | fourbar_design | rolling_disc | slider_crank | slider_crank_control | \
       slider_crank_friction | watt_sixbar_lengths) echo "--slow 4" ;;
     fourbar | pendulum | cam_table | gear_train | gearbox | rack_pinion | ring_disc) echo "--slow 2" ;;

@@ -31,8 +31,8 @@ namespace mo2d {
 
 // A parameter the optimizer varies, within [lo, hi] (lo < hi, both finite).
 struct DesignVariable {
-  std::string name{};
-  double lo = 0, hi = 0;
+  std::string name{};     // a parameter of the scene's parameters: block
+  double lo = 0, hi = 0;  // its bounds
 };
 
 // One evaluation, as reported to OptimizeOptions::progress.
@@ -73,23 +73,24 @@ struct OptimizeStart {
   std::vector<double> x0{}, x{};  // where it started and the best design it found
   double value = 0;               // objective at x
   double violation = 0;           // max(0, max_i g_i(x))
-  int evaluations = 0;
-  std::string status{};  // "xtol" (converged), "max_evals", "max_seconds", "roundoff", ...
+  int evaluations = 0;            // runs of the scene in this start
+  std::string status{};           // "xtol" (converged), "max_evals", "max_seconds", "roundoff", ...
 };
 
 // The best design over every start.
 struct OptimizeResult {
-  std::vector<std::string> names{};   // the varied parameters
-  std::vector<double> x{};            // their best values
-  double value = 0;                   // the objective there
-  std::vector<double> constraints{};  // g_i(x) in the form g <= 0, one per subject_to
-  bool feasible = true;               // every constraint holds at x
-  std::string method{};               // "BOBYQA" or "COBYLA" (NLopt)
-  std::string stop{};                 // "converged", "max_evals" or "max_seconds"
-  int evaluations = 0;                // runs of the scene
-  double wall_seconds = 0, cpu_seconds = 0;
-  std::vector<OptimizeStart> starts{};
-  std::vector<std::string> warnings{};
+  std::vector<std::string> names{};          // the varied parameters
+  std::vector<double> x{};                   // their best values
+  double value = 0;                          // the objective there
+  std::vector<double> constraints{};         // g_i(x) in the form g <= 0, one per subject_to
+  bool feasible = true;                      // every constraint holds at x
+  std::string method{};                      // "BOBYQA" or "COBYLA" (NLopt)
+  std::string stop{};                        // "converged", "max_evals" or "max_seconds"
+  int evaluations = 0;                       // runs of the scene
+  double wall_seconds = 0, cpu_seconds = 0;  // the whole optimization's wall and CPU time
+  std::vector<OptimizeStart> starts{};       // one per start, in start order
+  std::vector<std::string> warnings{};       // budget run out, a start out of evaluations, no
+                                             // feasible design, a variable at its bound
   // every parameter of the scene at the best design (dependency order, evaluated)
   std::vector<std::pair<std::string, double>> parameters{};
   // the scene file's text with the varied (and --set) parameters replaced by their values at x
