@@ -24,9 +24,8 @@ for preset in release debug-asan; do
   stage "${preset}: configure"
   cmake --preset "${preset}"
   if [[ "${preset}" == release && "${style}" == 1 ]]; then
-    stage "style (compile commands file by file: preset tidy, build-tidy/, configured only)"
-    cmake --preset tidy >/dev/null
-    ./scripts/check-style.sh build-tidy
+    stage "style (clang-tidy on the release configuration's unity batches, each file alone)"
+    ./scripts/check-style.sh build
   fi
   stage "${preset}: build (${jobs} jobs)"
   cmake --build --preset "${preset}" -j "${jobs}"
