@@ -33,6 +33,8 @@ anim_options() {
     crank_press) echo "--slow 8" ;;
     # one turn of the cam in 63 ms: 50 times slower (3.1 s, the lift-off and the landings seen)
     cam_follower) echo "--slow 50" ;;
+    # two crank turns in 0.4 s: 10 times slower
+    slider_crank_clearance) echo "--slow 10" ;;
     chain_drive | fourbar_design | rolling_disc | slider_crank | slider_crank_control | \
       slider_crank_friction | watt_sixbar_lengths) echo "--slow 4" ;;
     fourbar | pendulum | cam_table | gear_train | gearbox | rack_pinion | ring_disc) echo "--slow 2" ;;
