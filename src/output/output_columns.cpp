@@ -41,6 +41,20 @@ bool has_com(const Body& b) {
   return b.mass > 0;
 }
 
+// The law columns compiled against m (an Error naming the column and an unknown quantity).
+std::vector<CompiledLaw> compiled_output_columns(const Model& m, const OutputRequest& q) {
+  std::vector<CompiledLaw> out;
+  for (const auto& [name, law] : q.columns)
+    out.push_back(compile_law(m, law, "outputs.columns." + name, name));
+  return out;
+}
+
+void output_values_at(const Model& m, const OutputRequest& q,
+                      const std::vector<CompiledLaw>& columns,
+                      const Eigen::Ref<const Eigen::VectorXd>& q0,
+                      const Eigen::Ref<const Eigen::VectorXd>& q1, double t,
+                      Eigen::Ref<Eigen::VectorXd> out);
+
 }  // namespace
 
 std::vector<std::string> output_column_labels(const Model& m, const OutputRequest& q) {
@@ -67,6 +81,7 @@ std::vector<std::string> output_column_labels(const Model& m, const OutputReques
   if (q.com)
     for (const Body& b : m.bodies)
       if (has_com(b)) add(b.name + ".com", {"x", "y", "vx", "vy"});
+  for (const auto& column : q.columns) l.push_back(column.first);
   return l;
 }
 
@@ -74,6 +89,16 @@ void output_column_values(const Model& m, const OutputRequest& q,
                           const Eigen::Ref<const Eigen::VectorXd>& q0,
                           const Eigen::Ref<const Eigen::VectorXd>& q1, double t,
                           Eigen::Ref<Eigen::VectorXd> out) {
+  output_values_at(m, q, compiled_output_columns(m, q), q0, q1, t, out);
+}
+
+namespace {
+
+void output_values_at(const Model& m, const OutputRequest& q,
+                      const std::vector<CompiledLaw>& columns,
+                      const Eigen::Ref<const Eigen::VectorXd>& q0,
+                      const Eigen::Ref<const Eigen::VectorXd>& q1, double t,
+                      Eigen::Ref<Eigen::VectorXd> out) {
   Eigen::Index c = 0;
   auto put = [&](double v) {
     if (c >= out.size()) throw Error("outputs: more values than columns", "outputs", t);
@@ -133,8 +158,12 @@ void output_column_values(const Model& m, const OutputRequest& q,
       if (has_com(b))
         put_state({com_position(b, q0),
                    detail::local_velocity_of_point(b, q1, b.ci, b.cj, b.gamma, b.rho)});
+  for (std::size_t k = 0; k < columns.size(); ++k)
+    put(law_value(m, columns[k], q0, q1, t, "output column", q.columns[k].first));
   if (c != out.size()) throw Error("outputs: fewer values than columns", "outputs", t);
 }
+
+}  // namespace
 
 void add_output_columns(const Model& m, Trajectory& r, const OutputRequest& q) {
   if (q.empty()) return;
@@ -149,8 +178,10 @@ void add_output_columns(const Model& m, Trajectory& r, const OutputRequest& q) {
   Eigen::MatrixXd values(N, r.outputs.cols() + n);
   if (r.outputs.cols() > 0) values.leftCols(r.outputs.cols()) = r.outputs;
   Eigen::VectorXd row(n);
+  const std::vector<CompiledLaw> columns = compiled_output_columns(m, q);  // once, not per sample
   for (Eigen::Index k = 0; k < N; ++k) {
-    output_column_values(m, q, r.q0.row(k).transpose(), r.q1.row(k).transpose(), r.time[k], row);
+    output_values_at(m, q, columns, r.q0.row(k).transpose(), r.q1.row(k).transpose(), r.time[k],
+                     row);
     for (Eigen::Index j = 0; j < n; ++j) {
       if (!std::isfinite(row[j])) {
         std::ostringstream s;
