@@ -16,6 +16,8 @@
 //                      the reaction column K.torque)
 //   named point P      P.x, P.y, P.vx, P.vy
 //   body B             B.com.x, B.com.y, B.com.vx, B.com.vy (centre of mass)
+//   column NAME        NAME: the value of a law of t and the state (OutputRequest::columns; a
+//                      scene's `outputs: columns:`), e.g. a squared distance from a point
 // The powers of the forces, torques and springs given by a law sum to load_power (what the energy
 // balance integrates as work.loads); a linear spring's (or torsional spring's) power is minus the
 // rate of its potential energy less what its damper dissipates.
@@ -23,6 +25,7 @@
 #include <string>
 #include <vector>
 
+#include "mo2d/law.hpp"
 #include "mo2d/model.hpp"
 #include "mo2d/trajectory.hpp"
 
@@ -36,16 +39,18 @@ struct OutputRequest {
   // Named points (Model::points) by name; all_points: every named point of the model.
   std::vector<std::string> points{};
   bool all_points = false;
+  // Columns of laws (label, law of t and the quantities of the state, mo2d/law.hpp), last.
+  std::vector<std::pair<std::string, Law>> columns{};
   // Whether nothing is requested.
-  bool empty() const { return !loads && !com && points.empty() && !all_points; }
+  bool empty() const { return !loads && !com && points.empty() && !all_points && columns.empty(); }
 };
 
 // The labels of the requested columns, in order (loads: forces, torques, springs, torsional
-// springs; then points; then centres of mass). Throws Error naming a point the model does not
-// have (with a suggestion).
+// springs; then points; then centres of mass; then the law columns). Throws Error naming a point
+// the model does not have (with a suggestion).
 std::vector<std::string> output_column_labels(const Model& m, const OutputRequest& request);
 // Their values at one state (out: one per label). Throws Error (named, with the time) when a
-// value is not finite.
+// value is not finite, or naming a law column's unknown quantity.
 void output_column_values(const Model& m, const OutputRequest& request,
                           const Eigen::Ref<const Eigen::VectorXd>& q0,
                           const Eigen::Ref<const Eigen::VectorXd>& q1, double t,

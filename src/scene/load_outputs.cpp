@@ -31,15 +31,21 @@ void read_points(const Reader& r, const YAML::Node& node, System& out, SystemInf
   }
 }
 
-// outputs: {loads: bool, com: bool, points: bool | [names]} (default: no load or centre-of-mass
-// columns, every named point).
+// outputs: {loads: bool, com: bool, points: bool | [names], columns: {NAME: law}} (default: no
+// load or centre-of-mass columns, every named point, no law column).
 void read_outputs(const Reader& r, const YAML::Node& node, const SystemInfo& info, Scene& scene) {
   OutputRequest& o = scene.outputs;
   o.all_points = true;
   if (!node.IsDefined() || node.IsNull()) return;
-  r.check_keys(node, {"loads", "com", "points"}, "outputs");
+  r.check_keys(node, {"loads", "com", "points", "columns"}, "outputs");
   if (node["loads"].IsDefined()) o.loads = r.boolean(node["loads"], "outputs.loads");
   if (node["com"].IsDefined()) o.com = r.boolean(node["com"], "outputs.com");
+  for (const auto& [key, value] : r.entries(node["columns"], "outputs.columns")) {
+    const std::string& name = key.Scalar();
+    check_element_name(r, key, "output column");
+    o.columns.emplace_back(name,
+                           state_law(r, value, "outputs.columns." + name, name, &scene.law_labels));
+  }
   const YAML::Node points = node["points"];
   if (!points.IsDefined()) return;
   if (!points.IsSequence()) {

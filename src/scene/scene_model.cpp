@@ -89,6 +89,8 @@ Model build_scene_model(const Scene& scene, const BuildOptions& options) {
   Model m;
   try {
     m = build_model(scene.system, options);
+    for (const auto& [name, law] : scene.outputs.columns)  // their quantities, before any run
+      compile_law(m, law, "outputs.columns." + name, name);
   } catch (const SceneError&) {
     throw;
   } catch (const Error& e) {

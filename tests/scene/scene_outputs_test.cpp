@@ -99,6 +99,44 @@ TEST(SceneOutputs, DefaultsWriteEveryNamedPointAndNoLoads) {
                                       "link.com.y", "link.com.vx", "link.com.vy"}));
 }
 
+// outputs: columns: laws of t, the parameters and the state, one column each, after the others:
+// the squared distance from (1, 0) to the point mark at angle t, (0.5 c - 0.5 s - 1)^2 +
+// (0.5 s + 0.5 c)^2 = 1.5 - c + s, and the rate times the time.
+TEST(SceneOutputs, LawColumnsAreExpressionsOfTheState) {
+  const std::string text =
+      replaced(replaced(kScene, "name: p\n", "name: p\nparameters: {X: 1}\n"), "  points: [mark]\n",
+               "  points: [mark]\n  columns:\n"
+               "    dist2: (mark.x - X)^2 + mark.y^2\n"
+               "    wt: link.w * t\n");
+  const Scene scene = parse_scene(text, "p.yaml");
+  ASSERT_EQ(scene.outputs.columns.size(), 2u);
+  const Model m = build_scene_model(scene);
+  Trajectory r = inverse_dynamics(m, scene.motion, inverse_options(scene));
+  add_output_columns(m, r, scene.outputs);
+  EXPECT_EQ(r.output_labels.back(), "wt");
+  for (int k = 0; k < r.time.size(); ++k) {
+    const double t = r.time[k];
+    EXPECT_NEAR(r.outputs(k, r.output("dist2")), 1.5 - std::cos(t) + std::sin(t), 1e-12) << t;
+    EXPECT_NEAR(r.outputs(k, r.output("wt")), t, 1e-10) << t;
+  }
+  // the per-state function gives the same row
+  Eigen::VectorXd row(static_cast<Eigen::Index>(output_column_labels(m, scene.outputs).size()));
+  const int last = static_cast<int>(r.time.size()) - 1;
+  output_column_values(m, scene.outputs, r.q0.row(last).transpose(), r.q1.row(last).transpose(),
+                       r.time[last], row);
+  EXPECT_NEAR(row[row.size() - 2], 1.5 - std::cos(1.0) + std::sin(1.0), 1e-12);
+  const std::string csv = trajectory_csv(r);
+  const std::string header = csv.substr(0, csv.find('\n'));
+  EXPECT_NE(header.find(",mark.vy,dist2,wt"), std::string::npos) << header;
+  // an unknown quantity is refused before any run, where the column writes it
+  const std::string bad = replaced(text, "mark.y^2", "mark.z^2");
+  EXPECT_NE(error_of(bad).find("bad.yaml:24:29: "), std::string::npos) << error_of(bad);
+  EXPECT_NE(error_of(bad).find("mark.z"), std::string::npos) << error_of(bad);
+  const std::string named = replaced(text, "    wt:", "    w.t:");
+  EXPECT_NE(error_of(named).find("names may not contain '.'"), std::string::npos)
+      << error_of(named);
+}
+
 TEST(SceneOutputs, PointsOfSubsystemsCarryTheInstancePrefix) {
   const std::string text = R"yaml(name: legs
 subsystems:
