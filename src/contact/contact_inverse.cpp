@@ -15,8 +15,10 @@
 #include <cstdio>
 #include <utility>
 
+#include "contact/circle_circle.hpp"
 #include "contact/contact_run.hpp"
 #include "contact/contact_set.hpp"
+#include "contact/point_line.hpp"
 #include "mo2d/error.hpp"
 #include "run/format.hpp"
 
