@@ -103,9 +103,9 @@ TEST(ContactInverse, FirstNegativeForceIsTheForwardRunsLiftOff) {
 }
 
 // A bar of length L pivoted at one end, its tip (a circle of radius r) on the floor: held by the
-// floor, N = m g / 2 (moments about the pivot); the same bar above the floor turned down through
-// it by its pivot, actuated: the motion closes a contact open at the start, refused at the located
-// time, where sin(t) = (y0 - r) / L.
+// floor, N = m g / 2 (moments about the pivot). The same bar above the floor, turned by its
+// pivot, actuated: turned up, the contact open at the start stays open and out of the run; turned
+// down through the floor, the motion closes it: refused at the located time, sin(t) = (y0 - r) / L.
 std::string bar(double y0, bool actuated) {
   char text[1024];
   std::snprintf(text, sizeof text, R"(name: bar
@@ -140,6 +140,14 @@ TEST(ContactInverse, ContactsHeldAndContactsClosedByTheMotion) {
     for (Eigen::Index i = 0; i < run.r.time.size(); ++i)
       EXPECT_NEAR(run.r.reactions(i, col), 2 * 9.81 / 2, 1e-12);
     EXPECT_FALSE(run.held.contacts[0].pulls);
+  }
+  {  // turned up: the contact open at the start stays open, left out (its least gap: at t = 0)
+    const InverseWithContacts run =
+        inverse_of(parse_scene(bar(0.5, true) + "motion: {bar.angle: t}\n"));
+    ASSERT_FALSE(run.held.contacts[0].held);
+    EXPECT_EQ(run.held.model.dof, 1);
+    EXPECT_NEAR(run.held.contacts[0].min_gap, 0.45, 1e-12);
+    EXPECT_EQ(run.held.contacts[0].t_min_gap, 0);
   }
   try {
     (void)inverse_of(parse_scene(bar(0.5, true) + "motion: {bar.angle: -t}\n"));
