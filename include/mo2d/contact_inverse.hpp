@@ -40,9 +40,9 @@ struct InverseContact {
   double t_min = 0;      // held: its time (s)
   // held: the first time the force is negative (s; NaN when it never is)
   double t_negative = std::numeric_limits<double>::quiet_NaN();
-  double preload = 0;  // held: -min_force when it is negative (N), else 0
-  double min_gap = 0;  // not held: the least gap over the samples (m) and its time (s)
-  double t_min_gap = 0;
+  double preload = 0;    // held: -min_force when it is negative (N), else 0
+  double min_gap = 0;    // not held: the least gap over the samples (m)
+  double t_min_gap = 0;  // not held: its time (s)
 };
 
 // The model of an inverse run with contacts: `system` (the one m was built from, with options)
