@@ -16,8 +16,9 @@ namespace {
 
 int inverse(const SceneOptions& o) {
   const Scene scene = load_scene_with_overrides(o);
-  refuse_contacts(scene, "inverse dynamics");
-  const Model model = build_model_of(scene);
+  // with contacts: those closed at the start held closed (docs/contact.md, "Inverse dynamics")
+  ContactInverseModel held = inverse_model_of(scene);
+  const Model& model = held.model;
   if (static_cast<int>(scene.motion.size()) != model.dof)
     throw SceneError(Location{scene.file, 0, 0},
                      "inverse dynamics needs one prescribed motion per DOF: the model has " +
@@ -28,6 +29,8 @@ int inverse(const SceneOptions& o) {
   Progress progress("inverse dynamics of '" + model.name + "'", run.t0, run.t1, "samples");
   run.monitor = [&progress](const RunProgress& p) { progress.report(p); };
   Trajectory r = inverse_dynamics(model, scene.motion, run);
+  scene_inverse_contacts(scene, model, held.contacts, run,
+                         r);                    // the contacts' forces; warnings where they pull
   add_output_columns(model, r, scene.outputs);  // the columns the scene asks for
   const std::vector<Extreme> extremes =
       locate_extremes(model, scene.motion, run, r, scene.outputs);  // the peaks between samples
@@ -40,6 +43,7 @@ int inverse(const SceneOptions& o) {
   progress.finish();
   std::printf("mo2d inverse dynamics: %s\n", model.name.c_str());
   print_inverse_table(model, r, run);
+  print_inverse_contacts(held.contacts);
   print_peaks_table(r, extremes);
   if (design) print_design_table(r, *design);
   // all outputs land together or not at all (mo2d/output.hpp)
@@ -51,7 +55,7 @@ int inverse(const SceneOptions& o) {
   if (scene.run.json)
     out.add(output_path(o, scene, "inverse.json"),
             inverse_summary(o, scene, model, r, run, extremes,
-                            design ? design_json(r, *design) : std::string()));
+                            design ? design_json(r, *design) : std::string(), held.contacts));
   out.commit();
   for (const auto& path : out.paths()) std::printf("  wrote %s\n", path.c_str());
   return 0;

@@ -155,6 +155,15 @@ Model build_model_of(const Scene& s) {
   return m;
 }
 
+ContactInverseModel inverse_model_of(const Scene& s) {
+  BuildOptions b;
+  b.max_memory = s.run.max_memory;
+  ContactInverseModel held = scene_inverse_model(s, b);
+  for (const auto& w : held.model.sketch.warnings)
+    std::fprintf(stderr, "mo2d: warning: %s\n", w.c_str());
+  return held;
+}
+
 std::string output_path(const SceneOptions& o, const Scene& s, const std::string& suffix) {
   return (std::filesystem::path(o.out) / (s.name + "_" + suffix)).string();
 }

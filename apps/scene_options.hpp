@@ -52,6 +52,9 @@ struct UsageError : Error {
 };
 // build_scene_model with the scene's memory limit (run.max_memory, --max-memory).
 Model build_model_of(const Scene& s);
+// The model of an inverse run: build_model_of, or with the scene's contacts closed at the start
+// held closed (scene_inverse_model; docs/contact.md, "Inverse dynamics").
+ContactInverseModel inverse_model_of(const Scene& s);
 // OUT/<scene name>_<suffix> (the folder is created when the run's outputs are added to an
 // OutputSet, mo2d/output.hpp).
 std::string output_path(const SceneOptions& o, const Scene& s, const std::string& suffix);

@@ -78,6 +78,26 @@ json estimated_error(const Trajectory& r) {
           {"cpu_seconds", st.estimate_cpu_seconds}};
 }
 
+// An inverse run's contacts (mo2d/contact_inverse.hpp): held closed with their force's least value
+// and where it goes negative (null: never), or left out with their least gap.
+json inverse_contact_json(const std::vector<InverseContact>& contacts) {
+  json out = json::object();
+  for (const InverseContact& c : contacts) {
+    if (!c.held) {
+      out[c.name] = {
+          {"held", false}, {"gap", c.gap}, {"min_gap", c.min_gap}, {"t_min_gap", c.t_min_gap}};
+      continue;
+    }
+    out[c.name] = {{"held", true},
+                   {"column", c.column},
+                   {"min_force", c.min_force},
+                   {"t_min", c.t_min},
+                   {"t_negative", std::isnan(c.t_negative) ? json() : json(c.t_negative)},
+                   {"preload", c.preload}};
+  }
+  return out;
+}
+
 // A contact run: its contacts (name, law, restitution) and events in time order.
 json contact_json(const Scene& s, const std::vector<ContactEvent>& events) {
   json contacts = json::object();
@@ -105,7 +125,8 @@ json contact_json(const Scene& s, const std::vector<ContactEvent>& events) {
 
 std::string inverse_summary(const SceneOptions& o, const Scene& s, const Model& m,
                             const Trajectory& r, const InverseOptions& run,
-                            const std::vector<Extreme>& extremes, const std::string& design) {
+                            const std::vector<Extreme>& extremes, const std::string& design,
+                            const std::vector<InverseContact>& contacts) {
   json j = header(o, s, m, "inverse", r);
   j["run"] = {{"t0", run.t0},
               {"duration", s.run.duration},
@@ -120,6 +141,7 @@ std::string inverse_summary(const SceneOptions& o, const Scene& s, const Model& 
                         {"velocity", any ? r.residuals.col(1).maxCoeff() : 0.0},
                         {"acceleration", any ? r.residuals.col(2).maxCoeff() : 0.0}};
   if (!design.empty()) j["design"] = json::parse(design);
+  if (!contacts.empty()) j["contacts"] = inverse_contact_json(contacts);
   j["warnings"] = r.stats.warnings;
   j["cpu_seconds"] = r.stats.cpu_seconds;
   return j.dump(2) + "\n";

@@ -15,7 +15,8 @@ namespace mo2d::cli {
 // design: the JSON text of its design measures (design_json), "" for none
 std::string inverse_summary(const SceneOptions& o, const Scene& s, const Model& m,
                             const Trajectory& r, const InverseOptions& run,
-                            const std::vector<Extreme>& extremes, const std::string& design = "");
+                            const std::vector<Extreme>& extremes, const std::string& design = "",
+                            const std::vector<InverseContact>& contacts = {});
 // events: a contact run's (scene_forward), written as "contacts": {"events": [...]} for a scene
 // with contacts
 std::string forward_summary(const SceneOptions& o, const Scene& s, const Model& m,

@@ -73,6 +73,31 @@ void print_contact_events(const std::vector<ContactEvent>& events) {
     std::printf("  ... %zu more (all in the JSON summary)\n", events.size() - kListedContactEvents);
 }
 
+void print_inverse_contacts(const std::vector<InverseContact>& contacts) {
+  for (const InverseContact& c : contacts) {
+    if (!c.held) {
+      std::printf(
+          "  contact %s: open at the start (gap %.6g m), left out; least gap %.6g m at t "
+          "= %.10g s\n",
+          c.name.c_str(), c.gap, c.min_gap, c.t_min_gap);
+      continue;
+    }
+    std::printf("  contact %s: held closed, normal force %s: least %.10g N at t = %.10g s",
+                c.name.c_str(), c.column.c_str(), c.min_force, c.t_min);
+    if (c.pulls)
+      std::printf("; negative from t = %.10g s: a preload of %.10g N prevents it", c.t_negative,
+                  c.preload);
+    std::printf("\n");
+    if (c.pulls)
+      std::fprintf(stderr,
+                   "mo2d: warning: contact '%s': the prescribed motion needs a negative (pulling) "
+                   "contact force from t = %.10g s (the contact would open: a follower lifts off); "
+                   "least %.10g N at t = %.10g s; an extra force of %.10g N pressing it closed "
+                   "(a spring's preload) prevents it\n",
+                   c.name.c_str(), c.t_negative, c.min_force, c.t_min, c.preload);
+  }
+}
+
 double energy_error(const Trajectory& r) {
   return energy_balance_error(r);
 }

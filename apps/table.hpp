@@ -25,6 +25,9 @@ void print_tracking_table(const std::vector<TrackingError>& tracking);
 // impulse, energy lost, Zeno's predicted time), the first kListedContactEvents of them.
 inline constexpr size_t kListedContactEvents = 40;
 void print_contact_events(const std::vector<ContactEvent>& events);
+// An inverse run's contacts: held closed (the least normal force, where it goes negative, the
+// preload that prevents it; each negative one also as a warning on stderr) or left out.
+void print_inverse_contacts(const std::vector<InverseContact>& contacts);
 
 // The shortest text that reads back to the same double (std::to_chars), as in mo2d's CSV files.
 std::string shortest(double v);

@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "mo2d/contact.hpp"
+#include "mo2d/contact_inverse.hpp"
 #include "mo2d/control.hpp"
 #include "mo2d/design.hpp"
 #include "mo2d/error.hpp"
@@ -246,6 +247,17 @@ SceneRun scene_forward(const Scene& scene, const Model& model, const State& init
 // (sampled_extremes: a re-integration between samples would not know the contacts).
 std::vector<Extreme> scene_forward_extremes(const Scene& scene, const Model& model,
                                             const ForwardOptions& o, const Trajectory& r);
+// The model of a scene's inverse run: build_scene_model, and for a scene with contacts the model
+// with its rigid contacts closed at the start held closed (hold_closed_contacts,
+// mo2d/contact_inverse.hpp; docs/contact.md, "Inverse dynamics"); an error naming a contact is a
+// SceneError at its line.
+ContactInverseModel scene_inverse_model(const Scene& scene, const BuildOptions& options = {});
+// For a scene with contacts, after the inverse run r of its scene_inverse_model m
+// (inverse_options(scene)): report_contact_forces (the contacts' report in `report`, a warning in
+// r.stats.warnings for each that goes negative; an Error naming a contact left out that the
+// motion closes, and the time).
+void scene_inverse_contacts(const Scene& scene, const Model& m, std::vector<InverseContact>& report,
+                            const InverseOptions& options, Trajectory& r);
 // A SceneError at the scene's first contact if it has contacts: `what` (the cross-check, modes)
 // does not take them into account yet. Nothing for a scene without contacts.
 void refuse_contacts(const Scene& scene, const std::string& what);

@@ -301,6 +301,34 @@ void bind_results(py::module_& m) {
           "contact, speed (approach speed before, m/s), speed_after (impact: separation speed "
           "after, m/s), impulse (N s), energy_lost (J, the whole "
           "impact's), predicted_t (Zeno: the accumulation time, s)}; [] otherwise.")
+      .def_property_readonly(
+          "contacts",
+          [](const Result& r) {
+            py::dict out;
+            for (const InverseContact& c : r.contacts) {
+              py::dict x;
+              x["held"] = c.held;
+              x["gap"] = c.gap;
+              if (c.held) {
+                x["column"] = c.column;
+                x["min_force"] = c.min_force;
+                x["t_min"] = c.t_min;
+                x["t_negative"] = std::isnan(c.t_negative) ? py::object(py::none())
+                                                           : py::object(py::float_(c.t_negative));
+                x["preload"] = c.preload;
+              } else {
+                x["min_gap"] = c.min_gap;
+                x["t_min_gap"] = c.t_min_gap;
+              }
+              out[py::str(c.name)] = x;
+            }
+            return out;
+          },
+          "The contacts of a scene's inverse run with contacts (docs/contact.md, \"Inverse "
+          "dynamics\"): {name: {held, gap (m, at the start), and held: column (its normal "
+          "force, r[column], N), min_force (N), t_min (s), t_negative (s: the first time the "
+          "force is negative, the contact would open; None: never), preload (N: -min_force when "
+          "negative, else 0); left out: min_gap (m), t_min_gap (s)}}; {} otherwise.")
       .def_readonly("warnings", &Result::warnings,
                     "The build (sketch) warnings, then the run's, as the command line prints "
                     "them (list of str).")

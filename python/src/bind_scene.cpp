@@ -66,8 +66,11 @@ std::shared_ptr<Model> scene_model(const Scene& s) {
 }
 
 Result run_inverse(const Scene& scene, bool measures) {
-  refuse_contacts(scene, "inverse dynamics");
-  auto model = scene_model(scene);
+  // with contacts: those closed at the start held closed (docs/contact.md, "Inverse dynamics")
+  BuildOptions b;
+  b.max_memory = scene.run.max_memory;
+  ContactInverseModel held = scene_inverse_model(scene, b);
+  auto model = std::make_shared<Model>(std::move(held.model));
   if (static_cast<int>(scene.motion.size()) != model->dof)
     throw SceneError(Location{scene.file, 0, 0},
                      "inverse dynamics needs one prescribed motion per DOF: the model has " +
@@ -76,12 +79,14 @@ Result run_inverse(const Scene& scene, bool measures) {
   const InverseOptions run = inverse_options(scene);
   check_scene_options(scene, *model, run);
   Trajectory r = inverse_dynamics(*model, scene.motion, run);
+  scene_inverse_contacts(scene, *model, held.contacts, run, r);
   add_output_columns(*model, r, scene.outputs);
   const Eigen::Index n = r.outputs.cols();  // the design columns follow (not located)
   const std::optional<DesignRequest> design = design_of(scene, measures);
   if (design) add_design_columns(*model, r, *design);
   Result out = make_result(model, std::move(r));
   out.design = design;
+  out.contacts = std::move(held.contacts);
   out.locate = [model, motion = scene.motion, run, outputs = scene.outputs,
                 n](const Trajectory& t) {
     return locate_extremes(*model, motion, run, first_outputs(t, n), outputs);

@@ -48,6 +48,8 @@ struct Result {
   std::optional<DesignRequest> design{};
   // Scene runs with contacts: the contact events in time order (Result.events)
   std::vector<ContactEvent> events{};
+  // Scene inverse runs with contacts: each contact, held closed or left out (Result.contacts)
+  std::vector<InverseContact> contacts{};
 };
 
 // A label that is not a column of a result (r["pivot.torq"]): raised as mo2d.ColumnError, a

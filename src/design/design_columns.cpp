@@ -43,12 +43,12 @@ void add_design_columns(const Model& m, Trajectory& r, const DesignRequest& q) {
       r.reactions.rows() != N || r.reactions.cols() != m.n_reactions())
     throw Error("design: the trajectory's states do not match the model '" + m.name + "'",
                 "design");
-  std::vector<Block> blocks;
+  std::vector<design_detail::Block> blocks;
   for (const FourBarDef& f : q.four_bars) blocks.push_back(four_bar_columns(m, r, f));
   if (q.frame) blocks.push_back(frame_columns(m, r, q.moment_about));
   if (q.bearings) blocks.push_back(bearing_columns(r));
   Eigen::Index n = 0;
-  for (const Block& b : blocks)
+  for (const design_detail::Block& b : blocks)
     for (const std::string& l : b.labels) {
       for (const std::string& had : r.output_labels)
         if (l == had) throw Error("design: column '" + l + "' is already in the trajectory", l);
@@ -57,7 +57,7 @@ void add_design_columns(const Model& m, Trajectory& r, const DesignRequest& q) {
   Eigen::MatrixXd values(N, r.outputs.cols() + n);
   if (r.outputs.cols() > 0) values.leftCols(r.outputs.cols()) = r.outputs;
   Eigen::Index c = r.outputs.cols();
-  for (const Block& b : blocks)
+  for (const design_detail::Block& b : blocks)
     for (Eigen::Index j = 0; j < b.values.cols(); ++j, ++c)
       for (Eigen::Index k = 0; k < N; ++k) {
         const double v = b.values(k, j);
@@ -70,7 +70,7 @@ void add_design_columns(const Model& m, Trajectory& r, const DesignRequest& q) {
         values(k, c) = v;
       }
   r.outputs = std::move(values);
-  for (const Block& b : blocks)
+  for (const design_detail::Block& b : blocks)
     r.output_labels.insert(r.output_labels.end(), b.labels.begin(), b.labels.end());
 }
 

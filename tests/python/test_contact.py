@@ -69,7 +69,33 @@ def test_scene_without_contacts_has_no_events(mechanisms):
     assert r.events == []
 
 
-def test_inverse_of_a_contact_scene_is_refused(mechanisms):
-    with pytest.raises(mo2d.Error, match=r"bouncing_ball.yaml:29:3: contact 'floor': inverse "
-                       r"dynamics does not take contacts into account yet"):
-        mo2d.inverse(mo2d.load_scene(mechanisms / "bouncing_ball.yaml"))
+def test_crosscheck_of_a_contact_scene_is_refused(mechanisms):
+    with pytest.raises(mo2d.Error, match=r"bouncing_ball.yaml:29:3: contact 'floor': the Box2D "
+                       r"cross-check .* does not take contacts into account yet"):
+        mo2d.crosscheck(mo2d.load_scene(mechanisms / "bouncing_ball.yaml"))
+
+
+def test_inverse_holds_the_cam_follower_on_its_cam(mechanisms):
+    """Inverse dynamics with the contact held closed (docs/contact.md, "Inverse dynamics"): the
+    contact force N = m g + P0 + ecc (k - m w^2) sin(w t) (the scene's header), positive below
+    the critical speed (no warning), negative from the forward run's lift-off time above it."""
+    m, k, ecc, P0, g = 0.5, 2000.0, 0.01, 10.0, 9.81  # the scene's parameters
+    for w in (80.0, 100.0):
+        r = mo2d.inverse(mo2d.load_scene(mechanisms / "cam_follower.yaml", set={"omega": w}))
+        c = r.contacts["cam"]
+        assert c["held"] and c["column"] == "cam.normal_force"
+        t = r["t"]
+        scale = m * g + P0 + ecc * abs(k - m * w * w)
+        for x, n in zip(t, r["cam.normal_force"]):
+            assert n == pytest.approx(m * g + P0 + ecc * (k - m * w * w) * math.sin(w * x),
+                                      abs=1e-9 * scale), x
+        assert c["min_force"] == pytest.approx(m * g + P0 - ecc * (m * w * w - k),
+                                               abs=1e-9 * scale)
+        warned = [x for x in r.warnings if "contact 'cam'" in x]
+        if w == 80.0:
+            assert c["min_force"] > 0 and c["t_negative"] is None and c["preload"] == 0 and not warned
+        else:
+            lift = math.asin((m * g + P0) / (ecc * (m * w * w - k))) / w
+            assert c["t_negative"] == pytest.approx(lift, rel=1e-9)
+            assert c["preload"] == pytest.approx(-c["min_force"], abs=0)
+            assert len(warned) == 1 and "negative (pulling) contact force" in warned[0]
