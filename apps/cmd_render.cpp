@@ -9,6 +9,7 @@
 #include "command.hpp"
 #include "mo2d/mo2d.hpp"
 #include "mo2d/render.hpp"
+#include "mo2d/scene.hpp"
 #include "render_animate.hpp"
 #include "scene_options.hpp"
 
@@ -78,6 +79,8 @@ int render(const RenderCliOptions& o) {
     files.commit();
     print_outputs(out);
   } else {
+    // (mo2d inverse holds a scene's closed contacts; this plain run would leave them out)
+    refuse_contacts(scene, "mo2d render's inverse dynamics (mo2d inverse runs them)");
     const InverseOptions run = inverse_options(scene);
     check_scene_options(scene, model, run);
     const Trajectory r = inverse_dynamics(model, scene.motion, run);

@@ -6,6 +6,7 @@
 
 #include "command.hpp"
 #include "mo2d/mo2d.hpp"
+#include "mo2d/scene.hpp"
 #include "mo2d/view.hpp"
 #include "scene_options.hpp"
 
@@ -34,6 +35,8 @@ Trajectory solve(const ViewCliOptions& o, const Scene& scene, const Model& model
                 model.name.c_str(), static_cast<int>(r.time.size()), run.t0, run.t1);
     return r;
   }
+  // (mo2d inverse holds a scene's closed contacts; this plain run would leave them out)
+  refuse_contacts(scene, "mo2d view's inverse dynamics (mo2d inverse runs them)");
   const InverseOptions run = inverse_options(scene);
   check_scene_options(scene, model, run);
   Trajectory r = inverse_dynamics(model, scene.motion, run);

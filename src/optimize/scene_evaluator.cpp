@@ -8,6 +8,7 @@
 #include <sstream>
 
 #include "mo2d/mo2d.hpp"
+#include "mo2d/scene.hpp"
 #include "model/suggest.hpp"
 
 namespace mo2d::optimize_detail {
@@ -36,6 +37,9 @@ struct SceneRun {
   DesignRequest request;
 };
 SceneRun run_scene(const Scene& s, bool measures, double seconds) {
+  // the runs below are the plain inverse and forward ones, and the summaries re-integrate between
+  // samples: a scene with contacts would be optimized without them
+  refuse_contacts(s, "mo2d optimize");
   BuildOptions b;
   b.max_memory = s.run.max_memory;
   SceneRun out{build_scene_model(s, b), {}, s.design};
