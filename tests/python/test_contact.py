@@ -75,6 +75,14 @@ def test_crosscheck_of_a_contact_scene_is_refused(mechanisms):
         mo2d.crosscheck(mo2d.load_scene(mechanisms / "bouncing_ball.yaml"))
 
 
+def test_design_measures_of_a_contact_scene_are_refused(mechanisms):
+    """The frame's shaking force and the bearing loads read the joints' reactions, not the
+    contact forces: asked for on a contact scene, they are an error, not a result without them."""
+    for name, run in (("bouncing_ball.yaml", mo2d.forward), ("cam_follower.yaml", mo2d.inverse)):
+        with pytest.raises(mo2d.Error, match=r"contact '.*': the designer's measures"):
+            run(mo2d.load_scene(mechanisms / name), measures=True)
+
+
 def test_inverse_holds_the_cam_follower_on_its_cam(mechanisms):
     """Inverse dynamics with the contact held closed (docs/contact.md, "Inverse dynamics"): the
     contact force N = m g + P0 + ecc (k - m w^2) sin(w t) (the scene's header), positive below
