@@ -19,11 +19,7 @@ int inverse(const SceneOptions& o) {
   // with contacts: those closed at the start held closed (docs/contact.md, "Inverse dynamics")
   ContactInverseModel held = inverse_model_of(scene);
   const Model& model = held.model;
-  if (static_cast<int>(scene.motion.size()) != model.dof)
-    throw SceneError(Location{scene.file, 0, 0},
-                     "inverse dynamics needs one prescribed motion per DOF: the model has " +
-                         std::to_string(model.dof) + " DOF and 'motion' prescribes " +
-                         std::to_string(scene.motion.size()));
+  check_inverse_motion(scene, model, held.contacts);
   InverseOptions run = inverse_options(scene);
   check_scene_options(scene, model, run);
   Progress progress("inverse dynamics of '" + model.name + "'", run.t0, run.t1, "samples");

@@ -252,6 +252,11 @@ std::vector<Extreme> scene_forward_extremes(const Scene& scene, const Model& mod
 // mo2d/contact_inverse.hpp; docs/contact.md, "Inverse dynamics"); an error naming a contact is a
 // SceneError at its line.
 ContactInverseModel scene_inverse_model(const Scene& scene, const BuildOptions& options = {});
+// A SceneError at the scene's file unless its motion prescribes one coordinate per DOF of m, the
+// model of its inverse run; `held` (scene_inverse_model's contacts) names the held contacts, which
+// took one DOF each.
+void check_inverse_motion(const Scene& scene, const Model& m,
+                          const std::vector<InverseContact>& held = {});
 // For a scene with contacts, after the inverse run r of its scene_inverse_model m
 // (inverse_options(scene)): report_contact_forces (the contacts' report in `report`, a warning in
 // r.stats.warnings for each that goes negative; an Error naming a contact left out that the

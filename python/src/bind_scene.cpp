@@ -71,11 +71,7 @@ Result run_inverse(const Scene& scene, bool measures) {
   b.max_memory = scene.run.max_memory;
   ContactInverseModel held = scene_inverse_model(scene, b);
   auto model = std::make_shared<Model>(std::move(held.model));
-  if (static_cast<int>(scene.motion.size()) != model->dof)
-    throw SceneError(Location{scene.file, 0, 0},
-                     "inverse dynamics needs one prescribed motion per DOF: the model has " +
-                         std::to_string(model->dof) + " DOF and 'motion' prescribes " +
-                         std::to_string(scene.motion.size()));
+  check_inverse_motion(scene, *model, held.contacts);
   const InverseOptions run = inverse_options(scene);
   check_scene_options(scene, *model, run);
   Trajectory r = inverse_dynamics(*model, scene.motion, run);

@@ -46,11 +46,7 @@ SceneRun run_scene(const Scene& s, bool measures, double seconds) {
   const Model& model = out.model;
   Trajectory& r = out.r;
   if (s.run.solve == Solve::inverse) {
-    if (static_cast<int>(s.motion.size()) != model.dof)
-      throw SceneError(Location{s.file, 0, 0},
-                       "inverse dynamics needs one prescribed motion per DOF: the model has " +
-                           std::to_string(model.dof) + " DOF and 'motion' prescribes " +
-                           std::to_string(s.motion.size()));
+    check_inverse_motion(s, model);
     InverseOptions run = inverse_options(s);
     run.max_seconds = std::min(run.max_seconds, seconds);
     check_scene_options(s, model, run);

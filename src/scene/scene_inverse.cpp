@@ -1,6 +1,7 @@
 // A scene's inverse run with contacts (mo2d/scene.hpp): the model with the contacts closed at the
 // start held (hold_closed_contacts, mo2d/contact_inverse.hpp) and the report of their forces.
 #include <cmath>
+#include <string>
 
 #include "mo2d/scene.hpp"
 
@@ -29,6 +30,20 @@ ContactInverseModel scene_inverse_model(const Scene& scene, const BuildOptions& 
   } catch (const Error& e) {
     at_contact(scene, e);
   }
+}
+
+void check_inverse_motion(const Scene& scene, const Model& m,
+                          const std::vector<InverseContact>& held) {
+  if (static_cast<int>(scene.motion.size()) == m.dof) return;
+  std::string contacts;
+  for (const InverseContact& c : held)
+    if (c.held) contacts += (contacts.empty() ? "" : ", ") + c.name;
+  throw SceneError(
+      Location{scene.file, 0, 0},
+      "inverse dynamics needs one prescribed motion per DOF: the model has " +
+          std::to_string(m.dof) + " DOF" +
+          (contacts.empty() ? "" : " (the contacts held closed take one each: " + contacts + ")") +
+          " and 'motion' prescribes " + std::to_string(scene.motion.size()));
 }
 
 void scene_inverse_contacts(const Scene& scene, const Model& m, std::vector<InverseContact>& report,

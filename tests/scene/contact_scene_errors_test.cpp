@@ -153,5 +153,22 @@ TEST(ContactSceneErrors, StartsPenetratingAndRefused) {
   }
 }
 
+// Inverse dynamics holds a contact closed at the start, which takes one DOF: a motion that
+// prescribes one coordinate too many or too few is an error that names the held contacts.
+TEST(ContactSceneErrors, InverseMotionCountNamesTheHeldContacts) {
+  const Scene s =
+      parse_scene(contact_replaced("nodes: {C: [0, 0.5]}", "nodes: {C: [0, 0.05]}"), "bad.yaml");
+  const ContactInverseModel held = scene_inverse_model(s);
+  EXPECT_EQ(held.model.dof, 1);  // the ball's 2, less the floor's
+  try {
+    check_inverse_motion(s, held.model, held.contacts);
+    ADD_FAILURE() << "not refused";
+  } catch (const SceneError& e) {
+    EXPECT_EQ(std::string(e.what()),
+              "bad.yaml: inverse dynamics needs one prescribed motion per DOF: the model has 1 DOF "
+              "(the contacts held closed take one each: floor) and 'motion' prescribes 0");
+  }
+}
+
 }  // namespace
 }  // namespace mo2d
