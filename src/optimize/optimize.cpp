@@ -14,6 +14,7 @@
 
 #include "optimize/scene_evaluator.hpp"
 #include "run/cpu_time.hpp"
+#include "run/format.hpp"
 
 namespace mo2d {
 
@@ -175,9 +176,7 @@ std::vector<std::vector<double>> start_points(const OptimizeOptions& o, const Sc
 }
 
 std::string number(double v) {
-  char buf[32];
-  std::snprintf(buf, sizeof buf, "%.9g", v);
-  return buf;
+  return detail::fmt(v, 9);
 }
 
 void add_warnings(const OptimizeOptions& o, const SceneEvaluator& ev, OptimizeResult& res,

@@ -17,8 +17,11 @@ namespace mo2d {
 
 namespace detail {
 std::string fmt(double v) {
+  return fmt(v, 6);
+}
+std::string fmt(double v, int digits) {
   std::ostringstream s;
-  s.precision(6);
+  s.precision(digits);
   s << v;
   return s.str();
 }

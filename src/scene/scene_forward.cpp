@@ -1,19 +1,16 @@
 // A scene's forward run: forward_dynamics, or contact_dynamics with its contacts (scene_forward),
 // and the extremes of that run (mo2d/scene.hpp).
 #include <cmath>
-#include <sstream>
 
 #include "mo2d/scene.hpp"
+#include "run/format.hpp"
 
 namespace mo2d {
 
 namespace {
 
 std::string number(double v) {
-  std::ostringstream s;
-  s.precision(3);
-  s << v;
-  return s.str();
+  return detail::fmt(v, 3);
 }
 
 std::string method_text(const ForwardOptions& o) {
