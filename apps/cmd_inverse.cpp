@@ -32,10 +32,7 @@ int inverse(const SceneOptions& o) {
       locate_extremes(model, scene.motion, run, r, scene.outputs);  // the peaks between samples
   std::optional<DesignSummary> design;    // the designer's measures (docs/design.md)
   if (wants_design(scene, o.measures)) {  // (their columns after the extremes' columns)
-    refuse_contacts(scene,
-                    "the designer's measures (the frame's shaking force and the bearing loads read "
-                    "the joints' reactions, not the contact forces)");
-    const DesignRequest request = design_request(scene, o.measures);
+    const DesignRequest request = scene_design_request(scene, o.measures);
     add_design_columns(model, r, request);
     design = design_summary(model, r, request);
   }

@@ -38,12 +38,6 @@ std::vector<Peak> peaks(const Trajectory& r, const std::string& suffix) {
 
 }  // namespace
 
-DesignRequest design_request(const Scene& scene, bool measures) {
-  DesignRequest d = scene.design;
-  if (measures) d.frame = d.bearings = true;
-  return d;
-}
-
 void print_design_table(const Trajectory& r, const DesignSummary& d) {
   std::printf("  %-24s %14s %14s %14s %14s %16s\n", "input (design)", "mean", "RMS", "peak-to-peak",
               "dE max [J]", "flywheel [kg m2]");

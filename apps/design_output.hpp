@@ -9,9 +9,6 @@
 
 namespace mo2d::cli {
 
-// The scene's design: block, with --measures: also the frame's shaking force and moment and
-// every joint's bearing load.
-DesignRequest design_request(const Scene& scene, bool measures);
 // Whether a run reports measures: a design: block or --measures.
 inline bool wants_design(const Scene& scene, bool measures) {
   return measures || !scene.design.empty();

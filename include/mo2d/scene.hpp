@@ -266,5 +266,10 @@ void scene_inverse_contacts(const Scene& scene, const Model& m, std::vector<Inve
 // A SceneError at the scene's first contact if it has contacts: `what` (the cross-check, modes)
 // does not take them into account yet. Nothing for a scene without contacts.
 void refuse_contacts(const Scene& scene, const std::string& what);
+// The designer's measures a run of the scene adds: its design: block, and with `measures` also the
+// frame's shaking force and moment and every joint's bearing load. A SceneError at the scene's
+// first contact for a scene with contacts (the measures read the joints' reactions, not the
+// contact forces).
+DesignRequest scene_design_request(const Scene& scene, bool measures);
 
 }  // namespace mo2d

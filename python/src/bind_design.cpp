@@ -33,9 +33,7 @@ py::dict positions_dict(const FourBarLengths& l) {
 
 std::optional<DesignRequest> design_of(const Scene& scene, bool measures) {
   if (!measures && scene.design.empty()) return std::nullopt;
-  DesignRequest d = scene.design;
-  if (measures) d.frame = d.bearings = true;
-  return d;
+  return scene_design_request(scene, measures);
 }
 
 Trajectory first_outputs(const Trajectory& r, Eigen::Index n) {

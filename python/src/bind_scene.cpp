@@ -79,10 +79,6 @@ Result run_inverse(const Scene& scene, bool measures) {
   add_output_columns(*model, r, scene.outputs);
   const Eigen::Index n = r.outputs.cols();  // the design columns follow (not located)
   const std::optional<DesignRequest> design = design_of(scene, measures);
-  if (design)
-    refuse_contacts(scene,
-                    "the designer's measures (the frame's shaking force and the bearing loads read "
-                    "the joints' reactions, not the contact forces)");
   if (design) add_design_columns(*model, r, *design);
   Result out = make_result(model, std::move(r));
   out.design = design;
@@ -103,10 +99,6 @@ Result run_forward(const Scene& scene, bool measures) {
   add_output_columns(*model, r, scene.outputs);
   const Eigen::Index n = r.outputs.cols();  // the design columns follow (not located)
   const std::optional<DesignRequest> design = design_of(scene, measures);
-  if (design)
-    refuse_contacts(scene,
-                    "the designer's measures (the frame's shaking force and the bearing loads read "
-                    "the joints' reactions, not the contact forces)");
   if (design) add_design_columns(*model, r, *design);
   Result out = make_result(model, std::move(r));
   out.design = design;

@@ -42,7 +42,7 @@ SceneRun run_scene(const Scene& s, bool measures, double seconds) {
   refuse_contacts(s, "mo2d optimize");
   BuildOptions b;
   b.max_memory = s.run.max_memory;
-  SceneRun out{build_scene_model(s, b), {}, s.design};
+  SceneRun out{build_scene_model(s, b), {}, scene_design_request(s, measures)};
   const Model& model = out.model;
   Trajectory& r = out.r;
   if (s.run.solve == Solve::inverse) {
@@ -58,7 +58,6 @@ SceneRun run_scene(const Scene& s, bool measures, double seconds) {
     r = forward_dynamics(model, initial_state(s, model), run);
   }
   add_output_columns(model, r, s.outputs);
-  if (measures) out.request.frame = out.request.bearings = true;
   if (!out.request.empty()) add_design_columns(model, r, out.request);
   return out;
 }

@@ -1,5 +1,6 @@
 // A scene's forward run: forward_dynamics, or contact_dynamics with its contacts (scene_forward),
-// and the extremes of that run (mo2d/scene.hpp).
+// and the extremes of that run (mo2d/scene.hpp); what does not take contacts into account refuses
+// them (refuse_contacts, scene_design_request).
 #include <cmath>
 
 #include "mo2d/scene.hpp"
@@ -69,6 +70,15 @@ void refuse_contacts(const Scene& scene, const std::string& what) {
       scene.contact_where.empty() ? Location{scene.file, 0, 0} : scene.contact_where.front(),
       "contact '" + scene.contacts.front().name + "': " + what +
           " does not take contacts into account yet");
+}
+
+DesignRequest scene_design_request(const Scene& scene, bool measures) {
+  refuse_contacts(scene,
+                  "the designer's measures (the frame's shaking force and the bearing loads read "
+                  "the joints' reactions, not the contact forces)");
+  DesignRequest d = scene.design;
+  if (measures) d.frame = d.bearings = true;
+  return d;
 }
 
 }  // namespace mo2d
