@@ -91,20 +91,18 @@ MappedScene mapped_scene(const ContactCase& c, const FrameMap& f) {
   MappedScene out{build_model(s), {}, {}};
   // a mirror swaps the ends of each line, so that its free side stays the mapped free side
   const bool swap = f.mirrored();
-  out.contacts.push_back({.name = "stop",
-                          .point = "rod.B",
-                          .radius = f.s * c.r,
-                          .target = ContactDef::Target::line,
-                          .a = swap ? "ground.S2" : "ground.S1",
-                          .b = swap ? "ground.S1" : "ground.S2",
-                          .law = rigid(c.e_stop)});
-  out.contacts.push_back({.name = "floor",
-                          .point = "ball.C",
-                          .radius = f.s * c.rb,
-                          .target = ContactDef::Target::line,
-                          .a = swap ? "ground.F2" : "ground.F1",
-                          .b = swap ? "ground.F1" : "ground.F2",
-                          .law = rigid(c.e_floor)});
+  auto line = [&](const char* name, const char* point, double radius, const char* a, const char* b,
+                  double e) {
+    out.contacts.push_back({.name = name,
+                            .point = point,
+                            .radius = f.s * radius,
+                            .target = ContactDef::Target::line,
+                            .a = swap ? b : a,
+                            .b = swap ? a : b,
+                            .law = rigid(e)});
+  };
+  line("stop", "rod.B", c.r, "ground.S1", "ground.S2", c.e_stop);
+  line("floor", "ball.C", c.rb, "ground.F1", "ground.F2", c.e_floor);
   const Vec2 v = f.vector(c.v_along * along);
   const double w = swap ? -c.w0 : c.w0;  // an angular rate changes sign in a mirror
   out.initial = consistent_state(
@@ -115,12 +113,7 @@ MappedScene mapped_scene(const ContactCase& c, const FrameMap& f) {
 
 ContactRun run_case(const MappedScene& sc) {
   ContactOptions o;
-  o.forward = {.t0 = 0,
-               .t1 = 1.2,
-               .samples = 25,
-               .integrator = Integrator::dopri5,
-               .rtol = 1e-12,
-               .atol = 1e-14};
+  o.forward = tight(1.2, 25);
   return contact_dynamics(sc.model, sc.contacts, sc.initial, o);
 }
 

@@ -50,6 +50,16 @@ inline ContactLaw compliant(double K, double n, double e) {
   return l;
 }
 
+// dopri5 at rtol 1e-12, atol 1e-14 over [0, t1]: the contact tests' tight runs.
+inline ForwardOptions tight(double t1, int samples) {
+  return {.t0 = 0,
+          .t1 = t1,
+          .samples = samples,
+          .integrator = Integrator::dopri5,
+          .rtol = 1e-12,
+          .atol = 1e-14};
+}
+
 inline ContactLaw rigid(double e) {
   ContactLaw l;
   l.kind = ContactLaw::Kind::rigid;

@@ -21,15 +21,6 @@ std::vector<ContactEvent> of_kind(const ContactRun& r, ContactEvent::Kind k) {
   return out;
 }
 
-ForwardOptions tight(double t1, int samples) {
-  return {.t0 = 0,
-          .t1 = t1,
-          .samples = samples,
-          .integrator = Integrator::dopri5,
-          .rtol = 1e-12,
-          .atol = 1e-14};
-}
-
 }  // namespace
 
 // Dropped from h: the first impact at t1 = sqrt(2 h / g) at v1 = g t1; the k-th after it at
