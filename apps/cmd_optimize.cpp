@@ -123,7 +123,7 @@ int optimize(const OptimizeFlags& f) {
   o.progress = [&names](const OptimizeProgress& p) {
     if (!p.improved) return;
     std::printf("  eval %4d  start %d  objective %-16.10g%s  %s\n", p.evaluation, p.start + 1,
-                p.value, p.violation > 0 ? " (infeasible)" : "", assignments(names, p.x).c_str());
+                p.value, p.feasible ? "" : " (infeasible)", assignments(names, p.x).c_str());
     std::fflush(stdout);
   };
   OptimizeResult r;

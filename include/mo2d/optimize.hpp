@@ -42,6 +42,7 @@ struct OptimizeProgress {
   std::vector<double> x{};  // the design (in the order of OptimizeOptions::vary)
   double value = 0;         // objective at x
   double violation = 0;     // max(0, max_i g_i(x)): how far x is from feasible
+  bool feasible = true;     // violation <= OptimizeOptions::constraint_tol: every constraint holds
   bool improved = false;    // x is the best design so far
   double best = 0;          // the best objective so far (of feasible designs when any)
   double seconds = 0;       // wall time since the optimization started

@@ -44,6 +44,7 @@ py::dict optimize(const std::string& scene, const std::string& minimize, const p
       d["x"] = p.x;
       d["value"] = p.value;
       d["violation"] = p.violation;
+      d["feasible"] = p.feasible;
       d["improved"] = p.improved;
       d["best"] = p.best;
       progress(d);
@@ -97,7 +98,8 @@ void bind_optimize(py::module_& m) {
         "['G <= H', 'G >= H', 'G' (G <= 0)]; set: fixed parameters {name: value}; max_evals: "
         "per start; xtol: of each range; measures: the frame's and bearings' columns; "
         "max_seconds: wall-time budget of the whole optimization (0: the scene's); progress: "
-        "called with a dict after every run.\n\n"
+        "called after every run with a dict: evaluation, start, x, value, violation, feasible "
+        "(every constraint within its tolerance), improved (the best so far), best.\n\n"
         "Returns a dict: x {name: best value}, value, constraints (G - H at x), feasible, "
         "method, stop ('converged', 'max_evals', 'max_seconds'), evaluations, starts, "
         "warnings, parameters (all of the scene's at x), scene_text (the scene file with the "

@@ -118,6 +118,7 @@ struct Driver {
     p.x = x;
     p.value = last.objective;
     p.violation = last.violation;
+    p.feasible = last.violation <= o.constraint_tol;
     if (current->evaluations == 1 || better(last, start_best)) {
       start_best = last;
       current->x = x;
