@@ -61,6 +61,7 @@ int render(const RenderCliOptions& o) {
   job.video = o.video;
   set_frame_options(o, job.frame);
   set_frame_options(o, job.filmstrip_options.tile);
+  job.frame.contacts = job.filmstrip_options.tile.contacts = scene.contacts;
   const bool forward = o.solve.empty() ? scene.run.solve == Solve::forward : o.solve == "forward";
   if (forward) {
     const ForwardOptions run = forward_options(scene, model);

@@ -376,6 +376,7 @@ void draw_frame(cairo_t* cr, const FramePlan& plan, int k, const Decorations& de
   paint.ground_pivots();
   paint.bodies();
   draw_chains(cr, plan, k);
+  draw_contacts(cr, plan, k);
   paint.blocks();
   paint.joints();
   if (plan.options.show_com) paint.centres_of_mass();

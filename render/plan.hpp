@@ -40,6 +40,14 @@ struct FramePlan {
   };
   std::vector<std::vector<ChainAt>> chains{};  // [sample][chain]
   std::vector<double> chain_peak{};
+  // contacts (FrameOptions::contacts): per sample, each contact's moving point p and its target's
+  // points a, b (b = a for a circle or a hole; world); per contact, the bodies of p and of a
+  // (-1: ground) for their colours (contacts.cpp)
+  struct ContactAt {
+    Vec2 p{0, 0}, a{0, 0}, b{0, 0};
+  };
+  std::vector<std::vector<ContactAt>> contacts{};  // [sample][contact]
+  std::vector<std::pair<int, int>> contact_bodies{};
   int time_decimals = 2;
 };
 
@@ -66,5 +74,10 @@ int load_legend_lines(const FramePlan& p);
 // circles and spans, after the bodies).
 void plan_chains(FramePlan& p);
 void draw_chains(cairo_t* cr, const FramePlan& p, int k);
+// The contacts of every sample (FramePlan::contacts; contacts.cpp), their shapes added to the
+// view's box, and their drawing at sample k (after the bodies). Throws Error naming a contact
+// whose point is not in the model.
+void plan_contacts(FramePlan& p, Eigen::AlignedBox2d& box);
+void draw_contacts(cairo_t* cr, const FramePlan& p, int k);
 
 }  // namespace mo2d::detail

@@ -165,6 +165,7 @@ FramePlan make_plan(const Model& model, const Motion& motion, const FrameOptions
       if (jp.kind == JointKind::slot) box.extend(a), box.extend(a + d);
     }
   }
+  plan_contacts(p, box);
   for (size_t j = 0; j < p.parts.joints.size(); ++j) {
     const JointPart& jp = p.parts.joints[j];
     if (jp.kind == JointKind::prismatic) {

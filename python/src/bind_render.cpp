@@ -13,9 +13,10 @@ namespace mo2d::py_bind {
 
 namespace {
 
-FrameOptions frame_options(int width, int height, bool labels, bool loads,
+FrameOptions frame_options(const Result& r, int width, int height, bool labels, bool loads,
                            const std::vector<std::string>& traces) {
   FrameOptions f;
+  f.contacts = r.scene_contacts;
   f.width = width;
   f.height = height;
   f.show_labels = labels;
@@ -55,7 +56,7 @@ void bind_render(py::module_& m) {
       [](const Result& r, const std::string& path, int sample, int width, int height, bool labels,
          bool loads, const std::vector<std::string>& traces) {
         write_frame(*r.model, motion_of(r.trajectory), sample,
-                    frame_options(width, height, labels, loads, traces), path);
+                    frame_options(r, width, height, labels, loads, traces), path);
       },
       py::arg("result"), py::arg("path"), py::arg("sample") = 0, py::arg("width") = 800,
       py::arg("height") = 600, py::arg("labels") = false, py::arg("loads") = false,
@@ -78,6 +79,7 @@ void bind_render(py::module_& m) {
         o.columns = columns;
         o.tile.show_labels = labels;
         o.tile.traces = traces;
+        o.tile.contacts = r.scene_contacts;
         write_filmstrip(*r.model, motion_of(r.trajectory), o, path);
       },
       py::arg("result"), py::arg("path"), py::arg("frames") = 6, py::arg("columns") = 3,

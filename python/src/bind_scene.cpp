@@ -83,6 +83,7 @@ Result run_inverse(const Scene& scene, bool measures) {
   Result out = make_result(model, std::move(r));
   out.design = design;
   out.contacts = std::move(held.contacts);
+  out.scene_contacts = scene.contacts;
   out.locate = [model, motion = scene.motion, run, outputs = scene.outputs,
                 n](const Trajectory& t) {
     return locate_extremes(*model, motion, run, first_outputs(t, n), outputs);
@@ -103,6 +104,7 @@ Result run_forward(const Scene& scene, bool measures) {
   Result out = make_result(model, std::move(r));
   out.design = design;
   out.events = std::move(ran.events);
+  out.scene_contacts = scene.contacts;
   out.locate = [model, run, scene = std::make_shared<const Scene>(scene), n](const Trajectory& t) {
     return scene_forward_extremes(*scene, *model, run, first_outputs(t, n));
   };

@@ -60,6 +60,7 @@ py::dict animate(const Result& r, const std::string& path, const AnimationTiming
   a.frame.show_loads = c.loads;
   a.frame.show_labels = c.labels;
   a.frame.traces = c.traces;
+  a.frame.contacts = r.scene_contacts;
   a.fps = t.fps;
   a.slow = t.slow;
   a.max_frames = t.max_frames;

@@ -50,6 +50,8 @@ struct Result {
   std::vector<ContactEvent> events{};
   // Scene inverse runs with contacts: each contact, held closed or left out (Result.contacts)
   std::vector<InverseContact> contacts{};
+  // Scene runs: the scene's contacts, which its frames and animations draw
+  std::vector<ContactDef> scene_contacts{};
 };
 
 // A label that is not a column of a result (r["pivot.torq"]): raised as mo2d.ColumnError, a

@@ -12,7 +12,8 @@
 // negative); traces of chosen points; optionally the applied loads (FrameOptions::show_loads:
 // an arrow from each force's point along the force, a curved arrow around each torque's body,
 // sized by the value relative to the run's peak of that load); time stamp, scale bar, axes and
-// optional labels (body names).
+// optional labels (body names); contacts (FrameOptions::contacts): the circle around each one's
+// point and the line, circle or hole it touches.
 //
 // Framing: the view fits the whole motion (every sample of the run) with a margin and is the same
 // for every frame of the run; x and y have the same scale (aspect ratio preserved).
@@ -22,6 +23,7 @@
 #include <string>
 #include <vector>
 
+#include "mo2d/contact.hpp"
 #include "mo2d/model.hpp"
 #include "mo2d/render/image.hpp"
 #include "mo2d/trajectory.hpp"
@@ -92,6 +94,9 @@ struct FrameOptions {
   // Points traced over the whole motion: node labels ("crank.A"), centres of mass ("rod.com") or
   // named points (System::add_point: "tip", "leg.foot").
   std::vector<std::string> traces{};
+  // Contacts drawn (a scene's contacts: Scene::contacts): each one's circle around its point and
+  // the line, circle or hole it touches, hatched on the obstacle's side (docs/rendering.md).
+  std::vector<ContactDef> contacts{};
   FrameStyle style{};
 };
 
