@@ -106,6 +106,12 @@ struct ContactOptions {
   // the persistent contacts' constraint g'' = -2 w g' - w^2 g holds g at 0 against the drift
   // (w = baumgarte_rate, 1/s; 0: g'' = 0)
   double baumgarte_rate = 0;
+  // The accuracy asked for (a scene's run.accuracy, which chose forward's method and tolerances;
+  // forward.accuracy itself must be 0): the run's error is estimated when it is > 0 and
+  // forward.error_estimate is automatic, or whenever forward.error_estimate is on, by a second run
+  // at tighter settings (the estimator of ForwardOptions::error_estimate) whose events are
+  // compared with the run's; a warning where the estimate exceeds it, or where the events differ.
+  double accuracy = 0;
 };
 
 // A contact run: the trajectory (kind forward; the impacts' energy loss in energy.dissipated) and
@@ -117,7 +123,8 @@ struct ContactRun {
 
 // Forward dynamics of m from `initial` with the contacts (see the file's description). Throws
 // Error naming the contact and the time for a contact that starts closed beyond its tolerance, a
-// non-finite gap, an impact problem without a solution, chattering (more than max_events).
+// non-finite gap, an impact problem without a solution, chattering (more than max_events). The
+// error estimate (ContactOptions::accuracy): in trajectory.stats (error_estimate, estimated_error).
 ContactRun contact_dynamics(const Model& m, const std::vector<ContactDef>& contacts,
                             const State& initial, const ContactOptions& options = {});
 

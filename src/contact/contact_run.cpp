@@ -240,7 +240,9 @@ ContactRun contact_dynamics(const Model& m, const std::vector<ContactDef>& conta
   if (contacts.empty())
     throw Error("contact dynamics of '" + m.name + "': no contacts (use forward_dynamics)", m.name);
   detail::ContactRunner runner(m, contacts, options);
-  return runner.run(initial);
+  ContactRun run = runner.run(initial);
+  detail::estimate_contact_error(m, contacts, initial, options, run);
+  return run;
 }
 
 }  // namespace mo2d

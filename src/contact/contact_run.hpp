@@ -34,6 +34,11 @@ namespace mo2d::detail {
 inline constexpr double kContactGapTolerance = 1e-10;  // relative to Model::scale
 inline constexpr int kContactChatter = 8;  // events at one instant before the run is refused
 
+// The global error estimate of a contact run into run.trajectory.stats, when options ask for it
+// (ContactOptions::accuracy; contact_estimate.cpp).
+void estimate_contact_error(const Model& m, const std::vector<ContactDef>& contacts,
+                            const State& initial, const ContactOptions& options, ContactRun& run);
+
 class ContactRunner {
  public:
   ContactRunner(const Model& m, const std::vector<ContactDef>& defs, const ContactOptions& o);

@@ -97,27 +97,33 @@ void warn(Trajectory& r, const std::string& w) {
 
 void estimate_global_error(const Model& m, const State& initial, const ForwardOptions& asked,
                            const ForwardOptions& ran, Trajectory& r) {
+  estimate_global_error(m, asked, ran, r,
+                        [&](const ForwardOptions& o) { return forward_run(m, initial, o); });
+}
+
+bool estimate_global_error(const Model& m, const ForwardOptions& asked, const ForwardOptions& ran,
+                           Trajectory& r, const SecondRun& second_run) {
   if (!wanted(asked)) {
     r.stats.error_estimate =
         asked.error_estimate == ErrorEstimate::off
             ? "not estimated (error_estimate off)"
             : "not estimated: no accuracy asked for (error_estimate on estimates it by a second "
               "run at tighter settings, 1 to 2 times the run's CPU)";
-    return;
+    return false;
   }
   const ForwardOptions o = reference_options(ran, r.stats);
   const std::string how = "difference from a second run, " + setting_text(o, ran);
   const double start = cpu_seconds();
   Trajectory ref;
   try {
-    ref = forward_run(m, initial, o);
+    ref = second_run(o);
   } catch (const Error& e) {
     r.stats.estimate_cpu_seconds = cpu_seconds() - start;
     r.stats.error_estimate =
         "not estimated: the second run (" + setting_text(o, ran) + ") failed: " + e.what();
     warn(r, "the run's error is not estimated: the second run (" + setting_text(o, ran) +
                 ") failed: " + e.what());
-    return;
+    return false;
   }
   r.stats.estimate_cpu_seconds = cpu_seconds() - start;
   const VectorXd d = column_scaling(m).head(m.n0);  // lengths per unit of each coordinate
@@ -140,6 +146,7 @@ void estimate_global_error(const Model& m, const State& initial, const ForwardOp
                 " of the mechanism's size (" + fmt(m.scale) + " m), largest at t = " +
                 fmt(t_worst) + " s in '" + r.stats.estimated_error_variable + "' (" + how +
                 "); ask for a tighter accuracy or name the integrator and its tolerances");
+  return true;
 }
 
 }  // namespace mo2d::detail

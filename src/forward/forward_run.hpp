@@ -2,6 +2,7 @@
 // Internal to the forward-dynamics implementation: what a run needs besides its workspace
 // (ForwardData, mo2d/forward_data.hpp): the energy terms integrated with the state, the output
 // recorder (recorder.cpp), and the integrator drivers (forward_rk.cpp, forward_cvode.cpp).
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -62,6 +63,13 @@ Trajectory forward_run(const Model& m, const State& initial, const ForwardOption
 // the options of the run, `ran` the options that ran (forward_run's `chosen`).
 void estimate_global_error(const Model& m, const State& initial, const ForwardOptions& asked,
                            const ForwardOptions& ran, Trajectory& r);
+// The run of a second, tighter, setting (the estimate's reference), from the same initial state
+// on the same output times: forward_run, or a run with contacts (contact_estimate.cpp).
+using SecondRun = std::function<Trajectory(const ForwardOptions&)>;
+// The same, with the second run made by second_run; true when the second run ran and r.stats
+// holds the estimate.
+bool estimate_global_error(const Model& m, const ForwardOptions& asked, const ForwardOptions& ran,
+                           Trajectory& r, const SecondRun& second_run);
 // forward_run of o with the checks of a whole run: its energy balance and, against the accuracy
 // `asked` for, its error estimate (forward_dynamics, and each retry of meet_accuracy).
 Trajectory checked_run(const Model& m, const State& initial, const ForwardOptions& asked,
