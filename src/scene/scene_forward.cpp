@@ -31,8 +31,8 @@ SceneRun scene_forward(const Scene& scene, const Model& model, const State& init
   std::string method;
   if (o.accuracy > 0) {  // the explicit method of that accuracy; no stiffness test
     c.forward.accuracy = 0;
-    method = "accuracy " + number(o.accuracy) + " with contacts (no stiffness test): " +
-             method_text(c.forward);
+    method = "accuracy " + number(o.accuracy) +
+             " with contacts (no stiffness test): " + method_text(c.forward);
   } else {
     method = method_text(c.forward) + " (as named), with contacts";
   }
