@@ -12,6 +12,7 @@
 // worst body's errors); exit status 3 when an error exceeds --position-tolerance (relative to the
 // mechanism's size) or
 // --angle-tolerance.
+#include <cmath>
 #include <cstdio>
 #include <iostream>
 
@@ -77,9 +78,18 @@ int contact_check(const CrosscheckCliOptions& o, const Scene& scene) {
   run.forward.error_estimate = ErrorEstimate::off;
   CrosscheckOptions check = check_options(o, scene);
   check.restitution_threshold = o.restitution_threshold;
-  const ContactCrosscheck r =
-      crosscheck_contacts(reference, ref_scene.contacts, model, scene.contacts, initial,
-                          scene.run.t0 + scene.run.duration, check, samples, run);
+  ContactCrosscheck r;
+  try {
+    r = crosscheck_contacts(reference, ref_scene.contacts, model, scene.contacts, initial,
+                            scene.run.t0 + scene.run.duration, check, samples, run);
+  } catch (const SceneError&) {
+    throw;
+  } catch (const Error& e) {  // a contact Box2D cannot represent: at the contact's line
+    for (size_t k = 0; k < scene.contacts.size() && k < scene.contact_where.size(); ++k)
+      if (e.element() == scene.contacts[k].name && std::isnan(e.time()))
+        throw SceneError(scene.contact_where[k], e.what());
+    throw;
+  }
   const ContactTolerances tol{.position = o.position_tolerance,
                               .interval_steps = o.impact_time_tolerance,
                               .speed = o.impact_speed_tolerance};
