@@ -10,11 +10,14 @@
 //                              compliant (Lankarani-Nikravesh at several stiffnesses), Box2D at
 //                              several steps; CPU time per run (user + sys of this process,
 //                              median of repeated runs)
+//   mo2d_contact_study once ... one run of one engine, for callgrind's instruction counts (once()
+//                              below)
 #include <sys/resource.h>
 
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
 #include <cstring>
 #include <string>
 #include <vector>
@@ -232,10 +235,52 @@ void speed_against_error() {
   }
 }
 
+// One run of one engine, for instruction counts (valgrind --tool=callgrind; the count of `once
+// none`, the setup alone, subtracted): once rigid RTOL | once compliant K E | once box2d 1/H VEL
+// POS | once none.
+int once(int argc, char** argv) {
+  const std::string kind = argc > 2 ? argv[2] : "none";
+  auto arg = [&](int i) { return argc > i ? std::atof(argv[i]) : 0.0; };
+  Scene sc = scene_of("bouncing_ball");
+  const double g = 9.81, t1 = std::sqrt(2 * (1 - 0.05) / g);
+  const Exact x{t1, g * t1, 0.8, g};
+  const double t_end = x.time(kImpacts - 1) + 0.05;
+  if (kind == "compliant")
+    for (ContactDef& c : sc.contacts) {
+      c.law.kind = ContactLaw::Kind::compliant;
+      c.law.stiffness = arg(3);
+      c.law.restitution = arg(4);
+    }
+  const Setup s = setup(sc);
+  ContactOptions o = s.run;
+  o.forward.t1 = t_end;
+  o.forward.samples = 2;
+  if (kind == "rigid") {
+    o.forward.rtol = arg(3);
+    o.forward.atol = arg(3) * 1e-2;
+  }
+  if (kind == "rigid" || kind == "compliant") {
+    const ContactRun run = contact_dynamics(s.model, s.scene.contacts, s.initial, o);
+    std::printf("%zu events\n", run.events.size());
+  } else if (kind == "box2d") {
+    using namespace crosscheck_detail;
+    CrosscheckOptions c;
+    c.step = 1 / arg(3);
+    const int vel = static_cast<int>(arg(4)), pos = static_cast<int>(arg(5));
+    Box2DWorld w = build_box2d_world(s.model, s.initial.q0, s.initial.q1, c, false);
+    add_contact_shapes(s.model, w, s.scene.contacts, c);
+    const int steps = static_cast<int>(std::ceil(t_end / c.step));
+    for (int n = 0; n < steps; ++n) w.world->Step(static_cast<float>(c.step), vel, pos);
+    std::printf("%d steps\n", steps);
+  }
+  return 0;
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
   const bool all = argc < 2;
+  if (!all && std::strcmp(argv[1], "once") == 0) return once(argc, argv);
   if (all || std::strcmp(argv[1], "study") == 0) study();
   if (all || std::strcmp(argv[1], "speed") == 0) speed_against_error();
   return 0;
