@@ -17,10 +17,13 @@
 //   friction not carried by a motor) -> forces and torques each step, computed by mo2d's load
 //   functions on Box2D's own state (docs/crosscheck.md, "Shared code"); joint friction in a free
 //   joint -> its motor at speed 0 with the friction as its limit.
-//   Extra coordinates only observe the motion and are accepted. User constraints, chains, a
-//   massless body and a driven slide of a pin-in-slot are refused with an Error naming the
-//   element; a rotating body without centroidal inertia gets zero_inertia_fraction in both
-//   engines (0: refused).
+//   Extra coordinates only observe the motion and are accepted. A constant-speed drive (a user
+//   position constraint angle - omega t on a body pivoted on the ground) -> the pivot's motor.
+//   Contacts (crosscheck_contacts) -> b2CircleShape and one-sided b2EdgeShape fixtures with the
+//   contact's restitution and friction 0 (docs/contact.md, "Box2D"). Other user constraints,
+//   chains, a massless body, a driven slide of a pin-in-slot, a pin in a hole and a compliant
+//   contact are refused with an Error naming the element; a rotating body without centroidal
+//   inertia gets zero_inertia_fraction in both engines (0: refused).
 #include <Eigen/Core>
 #include <iosfwd>
 #include <span>
