@@ -81,6 +81,19 @@ TEST(ContactCrosscheck, ErrorsPlantedInMo2dsRunDisagree) {
   EXPECT_FALSE(contact_agrees(cam)) << cam.max_rebound_error;
 }
 
+TEST(ContactCrosscheck, BoxsDefaultRestitutionThresholdDisagrees) {
+  // Box2D's own threshold (1 m/s, b2FixtureDef::restitutionThreshold): the ball's 8th impact
+  // (0.905 m/s) is perfectly inelastic in Box2D; the cross-check's 0 keeps every bounce
+  CrosscheckOptions o;
+  o.restitution_threshold = 1;
+  const ContactCrosscheck r = run_check(contact_case("bouncing_ball"), o);
+  EXPECT_FALSE(contact_agrees(r));
+  ASSERT_GE(r.impacts.size(), 9u);
+  EXPECT_NEAR(r.impacts[6].after_box2d, 0.92, 0.01);  // 1.14 m/s before: still elastic
+  EXPECT_LT(r.impacts[7].after_box2d, 1e-6);          // 0.91 m/s before: no rebound (float noise)
+  EXPECT_FALSE(r.impacts[8].found);
+}
+
 TEST(ContactCrosscheck, RefusesWhatBox2DCannotRepresent) {
   const ContactCase hole = contact_case("slider_crank_clearance");
   try {
