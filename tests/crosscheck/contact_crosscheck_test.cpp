@@ -81,7 +81,7 @@ TEST(ContactCrosscheck, ErrorsPlantedInMo2dsRunDisagree) {
   EXPECT_FALSE(contact_agrees(cam)) << cam.max_rebound_error;
 }
 
-TEST(ContactCrosscheck, BoxsDefaultRestitutionThresholdDisagrees) {
+TEST(ContactCrosscheck, Box2DDefaultRestitutionThresholdDisagrees) {
   // Box2D's own threshold (1 m/s, b2FixtureDef::restitutionThreshold): the ball's 8th impact
   // (0.905 m/s) is perfectly inelastic in Box2D; the cross-check's 0 keeps every bounce
   CrosscheckOptions o;
