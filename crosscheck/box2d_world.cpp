@@ -257,6 +257,7 @@ Box2DWorld build_box2d_world(const Model& m, const Eigen::VectorXd& q0, const Ei
 
   const std::vector<char> on_proxy = revolutes_on_proxy(m);
   std::vector<int> gears;
+  std::vector<std::pair<int, double>> drives;  // (body, rate) of the constant-speed drives
   for (size_t ci = 0; ci < m.constraints.size(); ++ci) {
     const Constraint& c = m.constraints[ci];
     JointMap j;
@@ -266,10 +267,17 @@ Box2DWorld build_box2d_world(const Model& m, const Eigen::VectorXd& q0, const Ei
       case ConstraintKind::rigid:
       case ConstraintKind::coordinate:  // an extra coordinate observes the motion only
         continue;
-      case ConstraintKind::user_position:
+      case ConstraintKind::user_position: {
         if (add_rigid_spring(m, w, static_cast<int>(ci))) continue;
+        double speed = 0;
+        const int driven = constant_speed_drive(m, c, speed);
+        if (driven >= 0) {  // after the joints: the motor of its revolute joint
+          drives.emplace_back(driven, speed);
+          continue;
+        }
         refuse("user position constraint '" + c.name + "' has no Box2D equivalent", c.name);
         break;
+      }
       case ConstraintKind::user_velocity:
         refuse("user velocity constraint '" + c.name + "' has no Box2D equivalent", c.name);
         break;
@@ -290,6 +298,7 @@ Box2DWorld build_box2d_world(const Model& m, const Eigen::VectorXd& q0, const Ei
     w.joints.push_back(j);
   }
   for (int gi : gears) add_gear_joint(m, w, m.constraints[gi]);
+  for (const auto& [body, speed] : drives) drive_at_constant_speed(m, w, body, speed, options);
   add_spring_joints(m, w);
   assign_friction_motors(m, w);
   w.q0 = q0;

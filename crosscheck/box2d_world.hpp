@@ -13,6 +13,7 @@
 #include <string>
 #include <vector>
 
+#include "mo2d/contact.hpp"
 #include "mo2d/crosscheck.hpp"
 #include "mo2d/model.hpp"
 
@@ -106,6 +107,19 @@ b2Vec2 local_point(const Model& m, const Box2DWorld& w, const BodyPoint& p);
 void add_spring_joints(const Model& m, Box2DWorld& w);
 // Joint frictions carried by the motors of free revolute and prismatic joints.
 void assign_friction_motors(const Model& m, Box2DWorld& w);
+
+// Contacts (box2d_contacts.cpp): each contact's two shapes as fixtures of its two bodies
+// (restitution e, friction 0, restitution_threshold); an Error naming a contact Box2D cannot
+// represent (a hole, a compliant law, two bodies a joint connects).
+void add_contact_shapes(const Model& m, Box2DWorld& w, const std::vector<ContactDef>& contacts,
+                        const CrosscheckOptions& options);
+// A constant-speed drive: user position constraint c is psi = a x + b t + const on an extra
+// coordinate x that integrates one body's rotation rate, the body pivoted on the ground. Returns
+// the body and its rate in `speed` (rad/s), -1 if c is not such a drive.
+int constant_speed_drive(const Model& m, const Constraint& c, double& speed);
+// The motor of `body`'s revolute joint to the ground at `speed` (the body's rate).
+void drive_at_constant_speed(const Model& m, Box2DWorld& w, int body, double speed,
+                             const CrosscheckOptions& options);
 
 // Model with every rotating zero-inertia body given I = fraction m r^2; notes what it changed.
 Model with_inertia_floor(const Model& m, double fraction, std::vector<std::string>& notes);

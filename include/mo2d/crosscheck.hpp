@@ -17,16 +17,20 @@
 //   friction not carried by a motor) -> forces and torques each step, computed by mo2d's load
 //   functions on Box2D's own state (docs/crosscheck.md, "Shared code"); joint friction in a free
 //   joint -> its motor at speed 0 with the friction as its limit.
-//   Extra coordinates only observe the motion and are accepted. User constraints, chains, a
-//   massless body and a driven slide of a pin-in-slot are refused with an Error naming the
-//   element; a rotating body without centroidal inertia gets zero_inertia_fraction in both
-//   engines (0: refused).
+//   Extra coordinates only observe the motion and are accepted. A constant-speed drive (a user
+//   position constraint angle - omega t on a body pivoted on the ground) -> the pivot's motor.
+//   Contacts (crosscheck_contacts) -> b2CircleShape and one-sided b2EdgeShape fixtures with the
+//   contact's restitution and friction 0 (docs/contact.md, "Box2D"). Other user constraints,
+//   chains, a massless body, a driven slide of a pin-in-slot, a pin in a hole and a compliant
+//   contact are refused with an Error naming the element; a rotating body without centroidal
+//   inertia gets zero_inertia_fraction in both engines (0: refused).
 #include <Eigen/Core>
 #include <iosfwd>
 #include <span>
 #include <string>
 #include <vector>
 
+#include "mo2d/contact.hpp"
 #include "mo2d/forward.hpp"
 #include "mo2d/inverse.hpp"
 #include "mo2d/model.hpp"
@@ -67,6 +71,16 @@ struct CrosscheckOptions {
   // halved until it holds instead (noted in the result; the CLI sets it when --step is not given).
   bool refine_step = false;
   double max_motor_torque = 1e6, max_motor_force = 1e6;  // motor limits (N m, N)
+  // Contacts (crosscheck_contacts): Box2D applies a contact's restitution only where the normal
+  // approach speed exceeds this threshold (b2FixtureDef::restitutionThreshold, m/s; Box2D's
+  // default 1 m/s would make the bouncing ball's impacts from the 8th on perfectly inelastic).
+  // 0: at every approach speed, as mo2d's Newton law.
+  double restitution_threshold = 0;
+  // Contacts: an impact of mo2d's run is compared while the interval since the contact's previous
+  // event (impact, lift-off; t0 for the first) spans at least this many Box2D steps: Box2D resolves
+  // a bounce only to about a step, so the accumulating bounces of a Zeno sequence are not
+  // compared (nor anything after the first impact that is not).
+  int min_impact_steps = 50;
   // A rotating body whose centroidal inertia is 0 (a point mass on a massless link) cannot turn
   // in Box2D; if > 0 such bodies get I = fraction * m * (farthest node distance)^2 in BOTH the
   // Box2D world and the mo2d reference (recorded in the report's notes); 0: refuse them. The
@@ -204,6 +218,56 @@ ForwardCrosscheck crosscheck_forward(const Model& reference, const Model& model,
                                      const State& initial, double t1,
                                      const CrosscheckOptions& check, int samples,
                                      const EffortLaws& efforts = {});
+
+// One impact of a contact in both engines (crosscheck_contacts).
+struct ImpactComparison {
+  std::string contact{};                   // the contact's name
+  int index = 0;                           // its k-th impact (k = 0: the first)
+  bool found = false;                      // Box2D had a k-th closing of this contact
+  double t_mo2d = 0, t_box2d = 0;          // time (s)
+  double speed_mo2d = 0, speed_box2d = 0;  // approach speed -g' before (m/s)
+  double after_mo2d = 0, after_box2d = 0;  // separation speed g' after (m/s)
+  // the time since the previous compared impact of the contact (the first: since mo2d's previous
+  // event of the contact, or t0), in each engine (s)
+  double interval_mo2d = 0, interval_box2d = 0;
+};
+// Contact cross-check (docs/contact.md, "Box2D"): the motion at the samples, and the impacts.
+struct ContactCrosscheck {
+  // centres of mass and angles at the samples (energy_difference: Box2D's mechanical energy minus
+  // mo2d's, informative; mo2d_energy_error is not set)
+  ForwardCrosscheck motion{};
+  std::vector<ImpactComparison> impacts{};  // the compared impacts, contact by contact
+  std::vector<ContactEvent> events{};       // mo2d's events
+  int mo2d_impacts = 0, box2d_impacts = 0;  // over the whole run (Box2D: its closings)
+  bool missing = false;                     // a compared mo2d impact that Box2D does not have
+  // largest |t_box2d - t_mo2d| (s: Box2D's first-order errors accumulate over a sequence of
+  // bounces), largest |interval_box2d - interval_mo2d| in Box2D steps (each flight's own error),
+  // and the speed errors relative to speed_scale, the largest compared approach speed of mo2d's
+  double max_time_error = 0, max_interval_error = 0;
+  double max_speed_error = 0, max_rebound_error = 0, speed_scale = 0;
+  double deepest_penetration = 0;  // Box2D's most negative gap (mo2d's gap function), m
+};
+// The contact cross-check's verdict: position relative to the mechanism's size, the intervals
+// between impacts in Box2D steps (max_interval_error), approach and separation speeds relative to
+// ContactCrosscheck::speed_scale. From the convergence study at 1/2000 s (docs/contact.md,
+// "Box2D"): the bouncing ball 6.1e-3, 8 steps, 4.2e-3; the cam follower 2.6e-3, 1.5 steps, 3.9e-2.
+struct ContactTolerances {
+  double position = 1e-2, interval_steps = 16, speed = 0.1;
+};
+// Whether the two engines agree: every compared impact found, within the tolerances.
+bool contact_agrees(const ContactCrosscheck& r, const ContactTolerances& tolerances = {});
+// Contact cross-check: mo2d runs contact_dynamics(reference, reference_contacts, initial, run)
+// (run.forward's t0, t1 and samples set to the compared instants), Box2D integrates `model` with
+// `contacts` as shapes (restitution, friction 0, CrosscheckOptions::restitution_threshold) from
+// the same state up to t1. Refused (an Error naming the contact): holes, compliant laws, contacts
+// between bodies a joint connects (docs/contact.md, "Box2D"). A reference that differs from
+// `model` (a radius, a restitution) is a planted error the comparison must catch.
+ContactCrosscheck crosscheck_contacts(const Model& reference,
+                                      const std::vector<ContactDef>& reference_contacts,
+                                      const Model& model, const std::vector<ContactDef>& contacts,
+                                      const State& initial, double t1,
+                                      const CrosscheckOptions& check, int samples,
+                                      const ContactOptions& run);
 
 // A fixed-width table of the report (one line per channel) and its CSV (atomic write):
 // columns t, then for each effort and reaction label "mo2d.<label>" and "box2d.<label>".
