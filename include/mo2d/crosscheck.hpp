@@ -252,7 +252,9 @@ struct ContactCrosscheck {
 // ContactCrosscheck::speed_scale. From the convergence study at 1/2000 s (docs/contact.md,
 // "Box2D"): the bouncing ball 6.1e-3, 8 steps, 4.2e-3; the cam follower 2.6e-3, 1.5 steps, 3.9e-2.
 struct ContactTolerances {
-  double position = 1e-2, interval_steps = 16, speed = 0.1;
+  double position = 1e-2;      // largest position difference, relative to the mechanism's size
+  double interval_steps = 16;  // largest difference of an interval between impacts, Box2D steps
+  double speed = 0.1;          // largest speed difference, relative to the largest approach speed
 };
 // Whether the two engines agree: every compared impact found, within the tolerances.
 bool contact_agrees(const ContactCrosscheck& r, const ContactTolerances& tolerances = {});

@@ -113,7 +113,9 @@ Result run_forward(const Scene& scene, bool measures) {
 
 // The inverse cross-check of `mo2d crosscheck SCENE` (apps/cmd_crosscheck.cpp), without files.
 CrosscheckReport run_crosscheck(const Scene& scene, double step) {
-  refuse_contacts(scene, "the Box2D cross-check (Box2D shapes for contacts: issue 35, item 4)");
+  refuse_contacts(scene,
+                  "Python's mo2d.crosscheck (the command mo2d crosscheck compares a contact "
+                  "scene with Box2D: docs/contact.md, \"Box2D\")");
   const Model model = build_scene_model(scene);
   if (static_cast<int>(scene.motion.size()) != model.dof)
     throw SceneError(Location{scene.file, 0, 0},
@@ -135,7 +137,9 @@ CrosscheckReport run_crosscheck(const Scene& scene, double step) {
 // (apps/cmd_crosscheck.cpp: forward_check): both engines from the scene's initial state, the
 // scene's efforts and controllers in both, compared at its samples; the step refined unless given.
 ForwardCrosscheck run_crosscheck_forward(const Scene& scene, double step, bool step_given) {
-  refuse_contacts(scene, "the Box2D cross-check (Box2D shapes for contacts: issue 35, item 4)");
+  refuse_contacts(scene,
+                  "Python's mo2d.crosscheck (the command mo2d crosscheck compares a contact "
+                  "scene with Box2D: docs/contact.md, \"Box2D\")");
   const Model model = build_scene_model(scene, {.reduction = Reduction::none});
   const State initial = initial_state(scene, model);
   const int samples = scene.run.samples > 0 ? scene.run.samples : 101;
