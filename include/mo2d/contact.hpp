@@ -105,7 +105,8 @@ struct ContactEvent {
   double impulse = 0;       // impact: the impulse P (N s)
   double energy_lost = 0;   // impact: the energy its contact impulses dissipate, all contacts (J)
   double predicted_t = 0;   // zeno: the accumulation time t_inf the impacts converge to (s)
-  double speed_after = 0;   // impact: the separation speed g' after it (m/s; e * speed alone)
+  // impact (and a lift-off in an impact): the separation speed g' after (m/s)
+  double speed_after = 0;
 };
 
 // The kind's name: "onset", "exit", "impact", "lift_off", "zeno", "stick", "slip".
