@@ -98,12 +98,14 @@ json inverse_contact_json(const std::vector<InverseContact>& contacts) {
   return out;
 }
 
-// A contact run: its contacts (name, law, restitution) and events in time order.
+// A contact run: its contacts (name, law, restitution, friction if any) and events in time order.
 json contact_json(const Scene& s, const std::vector<ContactEvent>& events) {
   json contacts = json::object();
-  for (const ContactDef& c : s.contacts)
+  for (const ContactDef& c : s.contacts) {
     contacts[c.name] = {{"law", c.law.kind == ContactLaw::Kind::rigid ? "rigid" : "compliant"},
                         {"restitution", c.law.restitution}};
+    if (c.law.friction > 0) contacts[c.name]["friction"] = c.law.friction;
+  }
   json list = json::array();
   for (const ContactEvent& e : events) {
     json item = {{"kind", contact_event_name(e.kind)},

@@ -48,7 +48,7 @@ void print_tracking_table(const std::vector<TrackingError>& tracking) {
 
 void print_contact_events(const std::vector<ContactEvent>& events) {
   if (events.empty()) return;
-  int count[5] = {0, 0, 0, 0, 0};
+  int count[7] = {0, 0, 0, 0, 0, 0, 0};  // by ContactEvent::Kind
   double lost = 0, last = -1;
   for (const ContactEvent& e : events) {
     ++count[static_cast<int>(e.kind)];
@@ -56,8 +56,10 @@ void print_contact_events(const std::vector<ContactEvent>& events) {
   }
   std::printf(
       "  contact events: %zu (%d impacts dissipating %.6g J; %d lift-offs; %d Zeno "
-      "accumulations; %d onsets, %d exits)\n",
+      "accumulations; %d onsets, %d exits",
       events.size(), count[2], lost, count[3], count[4], count[0], count[1]);
+  if (count[5] + count[6] > 0) std::printf("; %d sticks, %d slips", count[5], count[6]);
+  std::printf(")\n");
   std::printf("  %-16s %-9s %-16s %14s %14s %14s %14s\n", "t [s]", "event", "contact",
               "before [m/s]", "after [m/s]", "impulse [N s]", "lost [J]");
   for (size_t k = 0; k < events.size() && k < kListedContactEvents; ++k) {

@@ -37,7 +37,8 @@ anim_options() {
     slider_crank_clearance) echo "--slow 10" ;;
     chain_drive | fourbar_design | rolling_disc | slider_crank | slider_crank_control | \
       slider_crank_friction | watt_sixbar_lengths) echo "--slow 4" ;;
-    fourbar | pendulum | cam_table | gear_train | gearbox | rack_pinion | ring_disc) echo "--slow 2" ;;
+    fourbar | pendulum | cam_table | gear_train | gearbox | rack_pinion | ring_disc | \
+      rocking_block) echo "--slow 2" ;;
     # the crank turns ~16 times a second: a quarter second, 20 times slower
     engine) echo "--duration 0.25 --samples 251 --slow 20" ;;
     # whitworth: one turn of the crank (the run makes four); rrr3: the first half of the 8 s

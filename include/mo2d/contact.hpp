@@ -38,6 +38,10 @@ struct ContactLaw {
   // compliant: the approach speed v0 below which the damping uses this floor instead (m/s): a
   // contact that closes at (nearly) zero speed would get an unbounded damping coefficient
   double min_approach_speed = 1e-6;
+  // Coulomb's friction coefficient mu >= 0 (0: frictionless), both laws: a sliding contact carries
+  // the tangential force -mu N sign(v_t) (N its normal force), a sticking one (v_t = 0) any force
+  // with |F_t| <= mu N; at an impact |P_t| <= mu P_n (docs/contact.md, "Friction")
+  double friction = 0;
 };
 
 // A contact: a point or a circle (radius > 0) around a point of a body, against a line or a
@@ -72,11 +76,28 @@ struct GapValue {
 GapValue contact_gap(const Model& m, const ContactDef& c, const Eigen::VectorXd& q0,
                      const Eigen::VectorXd& q1);
 
+// The tangent of a contact at a state (friction): the sliding rate v_t = J_t q1 (m/s), the
+// relative velocity along the tangent t of the two bodies' material points at the contact point
+// (t: a line's direction a -> b, n = z x t; for a circle t = (n_y, -n_x): src/contact/tangent.hpp),
+// the bias dv_t/dt - J_t a1 (m/s^2) and J_t (n1, the rotation rates' entries included).
+struct TangentValue {
+  double rate = 0;       // v_t (m/s)
+  double curvature = 0;  // dv_t/dt - J_t a1 (m/s^2)
+  Eigen::VectorXd J{};   // d v_t / d q1 (n1)
+};
+// The tangent of contact c of model m at (q0, q1); the errors of contact_gap, and for a line whose
+// points are on two different bodies (its tangent belongs to no body).
+TangentValue contact_tangent(const Model& m, const ContactDef& c, const Eigen::VectorXd& q0,
+                             const Eigen::VectorXd& q1);
+
 // One event of a contact run.
 struct ContactEvent {
   // a compliant contact closes (onset) or opens (exit); a rigid one is hit (impact), lifts off
-  // (lift_off: its multiplier reached 0) or ends its accumulating impacts (zeno)
-  enum class Kind { onset, exit, impact, lift_off, zeno };
+  // (lift_off: its multiplier reached 0) or ends its accumulating impacts (zeno); a closed contact
+  // with friction starts sticking (stick: its sliding rate reached 0 and the force that holds it
+  // fits in the friction cone) or sliding (slip: its sticking force reached the cone's edge, or
+  // it slides back at once after stopping)
+  enum class Kind { onset, exit, impact, lift_off, zeno, stick, slip };
   Kind kind = Kind::onset;  // what happened
   double t = 0;             // s
   std::string contact;      // its name
@@ -84,10 +105,11 @@ struct ContactEvent {
   double impulse = 0;       // impact: the impulse P (N s)
   double energy_lost = 0;   // impact: the energy its contact impulses dissipate, all contacts (J)
   double predicted_t = 0;   // zeno: the accumulation time t_inf the impacts converge to (s)
-  double speed_after = 0;   // impact: the separation speed g' after it (m/s; e * speed alone)
+  // impact (and a lift-off in an impact): the separation speed g' after (m/s)
+  double speed_after = 0;
 };
 
-// The kind's name: "onset", "exit", "impact", "lift_off", "zeno".
+// The kind's name: "onset", "exit", "impact", "lift_off", "zeno", "stick", "slip".
 const char* contact_event_name(ContactEvent::Kind kind);
 
 // The settings of a contact run: the forward options (integrator, tolerances, output times, ...;

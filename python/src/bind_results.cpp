@@ -297,9 +297,10 @@ void bind_results(py::module_& m) {
             return out;
           },
           "The contact events of a scene run with contacts (docs/contact.md), in time order: a "
-          "list of dicts {kind: 'onset' | 'exit' | 'impact' | 'lift_off' | 'zeno', t (s), "
-          "contact, speed (approach speed before, m/s), speed_after (impact: separation speed "
-          "after, m/s), impulse (N s), energy_lost (J, the whole "
+          "list of dicts {kind: 'onset' | 'exit' | 'impact' | 'lift_off' | 'zeno' | 'stick' | "
+          "'slip' (friction), t (s), contact, speed (approach speed before, m/s), speed_after "
+          "(impact: separation speed after; lift_off in an impact: its separation speed, m/s), "
+          "impulse (N s), energy_lost (J, the whole "
           "impact's), predicted_t (Zeno: the accumulation time, s)}; [] otherwise.")
       .def_property_readonly(
           "contacts",

@@ -39,32 +39,33 @@ void ContactRunner::count_event(double t, const std::string& who) {
 }
 
 void ContactRunner::handle(State& s) {
-  bool persistent = false;  // the multipliers at s
-  for (int i = 0; i < forces_->size(); ++i) persistent |= mode(i) == ContactMode::persistent;
-  if (persistent) {
-    scratch_f_.setZero();
-    forces_->add(s.t, s.q0, s.q1, scratch_f_);
-  }
-  std::vector<int> closing;
+  if (any_rows()) update_forces(s.t, s.q0, s.q1);  // the multipliers and sliding rates at s
+  std::vector<int> closing, sliding;
   bool any = false;
   for (int i = 0; i < forces_->size(); ++i) {
     const size_t k = static_cast<size_t>(i);
-    if (!(condition(i, s.t, s.q0, s.q1) <= 0)) continue;
+    if (!(normal_condition(i, s.q0) <= 0)) {
+      if (slide_condition(i) <= 0) any = true, sliding.push_back(i);
+      continue;
+    }
     any = true;
     const GapValue& g = forces_->gap(i, s.q0, s.q1);
     count_event(s.t, name(i));
     if (mode(i) == ContactMode::compliant) {  // exit
       forces_->mode[k] = ContactMode::open;
+      forces_->slide[k] = SlideMode::none;
       loosen(i, s.q0);
       events_.push_back({ContactEvent::Kind::exit, s.t, name(i), -g.rate, 0, 0, 0});
     } else if (mode(i) == ContactMode::persistent) {  // lift-off
       forces_->mode[k] = ContactMode::open;
+      forces_->slide[k] = SlideMode::none;
       loosen(i, s.q0);
       events_.push_back({ContactEvent::Kind::lift_off, s.t, name(i), -g.rate, 0, 0, 0});
     } else if (law(i).kind == ContactLaw::Kind::compliant) {  // onset
       forces_->mode[k] = ContactMode::compliant;
       loosen(i, s.q0);
       forces_->v0[k] = -g.rate;
+      start_sliding(s, i, true);
       events_.push_back({ContactEvent::Kind::onset, s.t, name(i), -g.rate, 0, 0, 0});
     } else {
       closing.push_back(i);
@@ -74,7 +75,10 @@ void ContactRunner::handle(State& s) {
     throw Error("contact dynamics of '" + m_.name + "': an event at t = " + fmt(s.t) +
                     " s that no contact's condition shows: internal error, please report it",
                 m_.name, s.t);
-  if (!closing.empty()) impact(s, closing);
+  if (!closing.empty())
+    impact(s, closing);
+  else if (!sliding.empty())
+    slide_events(s, sliding);
 }
 
 // The rigid contacts at s that join the impact of `closing`: those within kTouch tol_g of
@@ -112,14 +116,35 @@ void ContactRunner::impact(State& s, const std::vector<int>& closing) {
     }
     if (stays) e[r] = 0, candidates.push_back(i);
   }
-  const ImpactResult res = newton_impact(m_, s.t, s.q0, s.q1, J, rate, e, names);
+  ImpactFriction fr{Eigen::MatrixXd::Zero(k, m_.n1), Eigen::VectorXd::Zero(k),
+                    Eigen::VectorXd::Zero(k)};
+  for (int r = 0; r < k; ++r) {
+    const int i = set[static_cast<size_t>(r)];
+    if (!forces_->rough(i)) continue;
+    const TangentValue& v = forces_->tangent(i, s.q0, s.q1);
+    fr.J.row(r) = v.J.transpose();
+    fr.rate[r] = v.rate;
+    fr.mu[r] = law(i).friction;
+  }
+  const ImpactResult res = newton_impact(m_, s.t, s.q0, s.q1, J, rate, e, names, &fr);
   s.q1 = res.q1;
   off_[kDissipated] += res.energy_lost;
   off_[kConstraintWork] += res.constraint_work;  // a driven constraint's impulses (impact.hpp)
-  // a candidate that the impact left separating (another contact's impulse lifted it) stays open
+  // a perfectly inelastic contact that pushed leaves at no speed: it stays (held persistent)
+  for (int r = 0; r < k; ++r) {
+    const int i = set[static_cast<size_t>(r)];
+    if (e[r] == 0 && res.impulse[r] > 0 && mode(i) != ContactMode::persistent &&
+        std::find(candidates.begin(), candidates.end(), i) == candidates.end())
+      candidates.push_back(i);
+  }
+  // a candidate that the impact left separating (another contact's impulse lifted it) stays
+  // open; a persistent one lifts off (after the impacts in the events)
+  std::vector<int> lifted;
   std::erase_if(candidates, [&](int i) {
     const auto r = std::find(set.begin(), set.end(), i) - set.begin();
-    return res.rate[r] > co_.zeno_speed;
+    if (!(res.rate[r] > co_.zeno_speed)) return false;
+    if (mode(i) == ContactMode::persistent) lifted.push_back(static_cast<int>(r));
+    return true;
   });
   for (int r = 0; r < k; ++r) {
     const int i = set[static_cast<size_t>(r)];
@@ -129,6 +154,13 @@ void ContactRunner::impact(State& s, const std::vector<int>& closing) {
     if (predicted[static_cast<size_t>(r)] > 0)
       events_.push_back({ContactEvent::Kind::zeno, s.t, name(i), -rate[r], 0, 0,
                          predicted[static_cast<size_t>(r)]});
+  }
+  for (int r : lifted) {
+    const size_t i = static_cast<size_t>(set[static_cast<size_t>(r)]);
+    forces_->mode[i] = ContactMode::open;
+    forces_->slide[i] = SlideMode::none;
+    events_.push_back({ContactEvent::Kind::lift_off, s.t, name(static_cast<int>(i)), -rate[r], 0, 0,
+                       0, res.rate[r]});
   }
   settle(s, candidates);
 }
@@ -161,17 +193,11 @@ void ContactRunner::settle(State& s, std::vector<int> candidates) {
                     std::to_string(kMaxPersistent) + " persistent contacts at t = " + fmt(s.t) +
                     " s",
                 name(candidates[0]), s.t);
-  for (int i : candidates) forces_->mode[static_cast<size_t>(i)] = ContactMode::persistent;
-  for (;;) {
-    scratch_f_.setZero();
-    forces_->add(s.t, s.q0, s.q1, scratch_f_);
-    int worst = -1;
-    for (int i : candidates)
-      if (forces_->mode[static_cast<size_t>(i)] == ContactMode::persistent &&
-          forces_->lambda[i] <= 0 && (worst < 0 || forces_->lambda[i] < forces_->lambda[worst]))
-        worst = i;
-    if (worst < 0) break;
-    forces_->mode[static_cast<size_t>(worst)] = ContactMode::open;
+  for (int i : candidates) {
+    forces_->mode[static_cast<size_t>(i)] = ContactMode::persistent;
+    start_sliding(s, i, false);
+  }
+  while (release_one(candidates, s)) {
   }
   for (int i : candidates)
     if (forces_->mode[static_cast<size_t>(i)] == ContactMode::persistent)

@@ -51,6 +51,8 @@ void check_law(const ContactDef& c) {
     if (!(l.min_approach_speed > 0 && std::isfinite(l.min_approach_speed)))
       bad("min_approach_speed must be > 0 (got " + fmt(l.min_approach_speed) + ")");
   }
+  if (!(l.friction >= 0 && std::isfinite(l.friction)))
+    bad("the friction coefficient must be >= 0 (got " + fmt(l.friction) + ")");
   if (!(c.radius >= 0 && std::isfinite(c.radius)))
     bad("the radius must be >= 0 (got " + fmt(c.radius) + ")");
   if (c.target != ContactDef::Target::line &&
@@ -77,6 +79,10 @@ CompiledContact compile_contact(const Model& m, const ContactDef& c) {
   if (out.p.body >= 0 && (out.p.body == out.a.body ||
                           (c.target == ContactDef::Target::line && out.p.body == out.b.body)))
     throw Error("contact '" + c.name + "': its point and what it touches are on the same body",
+                c.name);
+  if (c.law.friction > 0 && c.target == ContactDef::Target::line && out.a.body != out.b.body)
+    throw Error("contact '" + c.name + "': with friction its line's points '" + c.a + "' and '" +
+                    c.b + "' must be on one body (the surface the point slides on)",
                 c.name);
   return out;
 }

@@ -50,11 +50,11 @@ ContactRunner::ContactRunner(const Model& m, const std::vector<ContactDef>& defs
   step_end_.assign(n, {NAN, NAN, NAN});
   excursion_warned_.assign(n, false);
   slack_.assign(n, 0.0);
+  slack_t_.assign(n, 0.0);
   scratch_f_ = Eigen::VectorXd::Zero(m.n1);
 }
 
-double ContactRunner::condition(int i, double t, const Eigen::VectorXd& q0,
-                                const Eigen::VectorXd& q1) {
+double ContactRunner::normal_condition(int i, const Eigen::VectorXd& q0) {
   switch (mode(i)) {
     case ContactMode::open:
       return (gap_only(m_, forces_->contacts[static_cast<size_t>(i)], q0) +
@@ -67,19 +67,18 @@ double ContactRunner::condition(int i, double t, const Eigen::VectorXd& q0,
     case ContactMode::persistent:
       break;
   }
-  (void)t;
-  (void)q1;
   return forces_->lambda[i] / std::max(lambda_ref_, 1e-300);
 }
 
+double ContactRunner::condition(int i, double t, const Eigen::VectorXd& q0,
+                                const Eigen::VectorXd& q1) {
+  (void)t;
+  (void)q1;
+  return std::min(normal_condition(i, q0), slide_condition(i));
+}
+
 double ContactRunner::event(double t, const Eigen::VectorXd& q0, const Eigen::VectorXd& q1) {
-  bool persistent = false;
-  for (int i = 0; i < forces_->size(); ++i) persistent |= mode(i) == ContactMode::persistent;
-  if (persistent) {  // the multipliers at this state
-    scratch_f_.setZero();
-    forces_->add(t, q0, q1, scratch_f_);
-    lambda_ref_ = std::max(lambda_ref_, forces_->lambda.cwiseAbs().maxCoeff());
-  }
+  if (any_rows()) update_forces(t, q0, q1);  // the multipliers and sliding rates at this state
   if (t > last_step_t_) check_excursion(t, q0, q1);
   double c = 1e300;
   for (int i = 0; i < forces_->size(); ++i) c = std::min(c, condition(i, t, q0, q1));
@@ -101,6 +100,9 @@ void ContactRunner::check_excursion(double t, const Eigen::VectorXd& q0,
     step_end_[k] = {t, g.g, g.rate};
     if ((mode(i) == ContactMode::open && g.g > 0) || (mode(i) == ContactMode::compliant && g.g < 0))
       slack_[k] = 0;
+    if (forces_->slide[k] == SlideMode::slip &&
+        forces_->slip_sign[k] * forces_->tangent(i, q0, q1).rate > 0)
+      slack_t_[k] = 0;
     if (mode(i) != ContactMode::open || excursion_warned_[k] || !(before[0] == t0)) continue;
     const double h = t - t0;
     if (!(before[2] < 0 && g.rate > 0 && before[1] > 0 && g.g > 0)) continue;
@@ -230,9 +232,13 @@ const char* contact_event_name(ContactEvent::Kind kind) {
     case ContactEvent::Kind::lift_off:
       return "lift_off";
     case ContactEvent::Kind::zeno:
+      return "zeno";
+    case ContactEvent::Kind::stick:
+      return "stick";
+    case ContactEvent::Kind::slip:
       break;
   }
-  return "zeno";
+  return "slip";
 }
 
 ContactRun contact_dynamics(const Model& m, const std::vector<ContactDef>& contacts,

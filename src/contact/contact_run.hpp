@@ -7,6 +7,9 @@
 //   open:        g + slack           (closing: a compliant onset or a rigid impact)
 //   compliant:   -g + slack          (the exit)
 //   persistent:  lambda / lambda_ref (the lift-off: the multiplier reaches 0)
+// and with friction, while closed (contact_friction.cpp):
+//   slip:        (s v_t + slack_t) / scale   (v_t crosses 0: stick, or sliding back)
+//   stick:       (mu N - |lambda_t|) / lambda_ref   (the cone's edge: slip starts)
 // The root finding returns the state just past the root (the condition's sign changed: g a hair
 // below 0 at an impact, by about |g'| 1e-13 t; or exactly 0). slack is 0, except right after an
 // event of the contact: then |g| (1 + 16 eps) + 1e-300, until the gap is strictly inside the new
@@ -72,6 +75,14 @@ class ContactRunner {
         std::abs(g) * (1 + 16 * std::numeric_limits<double>::epsilon()) + 1e-300;
   }
   Eigen::VectorXd scratch_f_;
+  // per contact: the slip condition's offset, |v_t| (1 + 16 eps) right after its slip started,
+  // until s v_t > 0 at a step's end
+  std::vector<double> slack_t_;
+  void loosen_slip(int i) {
+    slack_t_[static_cast<size_t>(i)] = std::abs(forces_->last_tangent(i).rate) *
+                                           (1 + 16 * std::numeric_limits<double>::epsilon()) +
+                                       1e-300;
+  }
 
   const std::string& name(int i) const {
     return forces_->contacts[static_cast<size_t>(i)].def.name;
@@ -79,6 +90,14 @@ class ContactRunner {
   const ContactLaw& law(int i) const { return forces_->contacts[static_cast<size_t>(i)].def.law; }
   ContactMode mode(int i) const { return forces_->mode[static_cast<size_t>(i)]; }
   double condition(int i, double t, const Eigen::VectorXd& q0, const Eigen::VectorXd& q1);
+  double normal_condition(int i, const Eigen::VectorXd& q0);
+  // contact_friction.cpp
+  double slide_condition(int i) const;
+  bool any_rows() const;  // a persistent or sticking contact: the forces' multipliers needed
+  void update_forces(double t, const Eigen::VectorXd& q0, const Eigen::VectorXd& q1);
+  void start_sliding(const State& s, int i, bool compliant_onset);
+  bool release_one(const std::vector<int>& candidates, const State& s);
+  void slide_events(State& s, const std::vector<int>& which);
   double event(double t, const Eigen::VectorXd& q0, const Eigen::VectorXd& q1);
   void check_excursion(double t, const Eigen::VectorXd& q0, const Eigen::VectorXd& q1);
   Trajectory leg(const State& s, double t1, int samples);

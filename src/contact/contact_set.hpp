@@ -28,6 +28,12 @@ void gap_into(const Model& m, const CompiledContact& c, const Eigen::Ref<const E
 double gap_only(const Model& m, const CompiledContact& c,
                 const Eigen::Ref<const Eigen::VectorXd>& q0);
 
+// The tangent of c at (q0, q1) into out (out.J must have m.n1 entries; written, no allocation;
+// contact_tangent.cpp, the maths in tangent.hpp).
+void tangent_into(const Model& m, const CompiledContact& c,
+                  const Eigen::Ref<const Eigen::VectorXd>& q0,
+                  const Eigen::Ref<const Eigen::VectorXd>& q1, TangentValue& out);
+
 // J += w^T dp/dq: the gradient of a function whose gradient with respect to the body point p is
 // w, in the node coordinates (Example 2.6 (b): p = (1 - gamma) p_i + gamma p_j + rho z x (p_j -
 // p_i), linear in the nodes). A point of the ground adds nothing.

@@ -5,6 +5,7 @@
 #include <Eigen/QR>
 #include <cmath>
 
+#include "contact/friction_impact.hpp"
 #include "mo2d/dynamics.hpp"
 #include "mo2d/error.hpp"
 #include "mo2d/forward.hpp"
@@ -50,7 +51,7 @@ bool solve_lcp_enumerate(const Eigen::MatrixXd& W, const Eigen::VectorXd& q, Eig
 ImpactResult newton_impact(const Model& m, double t, const Eigen::VectorXd& q0,
                            const Eigen::VectorXd& q1, const Eigen::MatrixXd& J,
                            const Eigen::VectorXd& rate, const Eigen::VectorXd& e,
-                           const std::string& names) {
+                           const std::string& names, const ImpactFriction* friction) {
   const int n = m.n1, rows = m.m1, k = static_cast<int>(J.rows());
   Eigen::MatrixXd K = Eigen::MatrixXd::Zero(n + rows, n + rows);
   Eigen::MatrixXd A(rows, n);
@@ -59,21 +60,44 @@ ImpactResult newton_impact(const Model& m, double t, const Eigen::VectorXd& q0,
   K.topLeftCorner(n, n) = mass_matrix(m);
   K.topRightCorner(n, rows) = A.transpose();
   K.bottomLeftCorner(rows, n) = A;
-  Eigen::MatrixXd rhs = Eigen::MatrixXd::Zero(n + rows, k);
-  rhs.topRows(n) = J.transpose();
+  const bool rough = friction && friction->mu.size() == k && friction->mu.maxCoeff() > 0;
+  const int cols = rough ? 2 * k : k;  // the tangents' directions after the normals'
+  Eigen::MatrixXd rhs = Eigen::MatrixXd::Zero(n + rows, cols);
+  rhs.topLeftCorner(n, k) = J.transpose();
+  if (rough) rhs.block(0, k, n, k) = friction->J.transpose();
   const Eigen::MatrixXd X = K.fullPivLu().solve(rhs).topRows(n);  // x_j
-  const Eigen::MatrixXd W = J * X;
-  const Eigen::VectorXd q = (Eigen::VectorXd::Ones(k) + e).cwiseProduct(rate);
   ImpactResult out;
-  if (!solve_lcp_enumerate(0.5 * (W + W.transpose()), q, out.impulse))
+  out.tangent_impulse = Eigen::VectorXd::Zero(k);
+  out.tangent_rate = friction && friction->rate.size() == k ? friction->rate : out.tangent_impulse;
+  bool solved = false;
+  if (rough) {
+    Eigen::MatrixXd JJ(2 * k, n);
+    JJ << J, friction->J;
+    const Eigen::MatrixXd W = JJ * X;
+    solved = solve_friction_impact(W, rate, friction->rate, e, friction->mu, out.impulse,
+                                   out.tangent_impulse);
+    out.rate =
+        rate + W.topLeftCorner(k, k) * out.impulse + W.topRightCorner(k, k) * out.tangent_impulse;
+    out.tangent_rate = friction->rate + W.bottomLeftCorner(k, k) * out.impulse +
+                       W.bottomRightCorner(k, k) * out.tangent_impulse;
+    out.q1 = q1 + X.leftCols(k) * out.impulse + X.rightCols(k) * out.tangent_impulse;
+  } else {
+    const Eigen::MatrixXd W = J * X;
+    const Eigen::VectorXd q = (Eigen::VectorXd::Ones(k) + e).cwiseProduct(rate);
+    solved = solve_lcp_enumerate(0.5 * (W + W.transpose()), q, out.impulse);
+    out.q1 = q1 + X * out.impulse;
+    out.rate = rate + W * out.impulse;
+  }
+  if (!solved)
     throw Error("impact of contact" + std::string(k > 1 ? "s " : " ") + names +
-                    " at t = " + fmt(t) + " s: Newton's restitution has no solution (" +
+                    " at t = " + fmt(t) + " s: Newton's restitution" +
+                    std::string(rough ? " with Coulomb friction" : "") + " has no solution (" +
                     std::to_string(k) + " contacts; at most " + std::to_string(kMaxImpactContacts) +
                     " closing at once are solved)",
                 names, t);
-  out.q1 = q1 + X * out.impulse;
-  out.rate = rate + W * out.impulse;
   out.energy_lost = -out.impulse.dot(rate + out.rate) / 2;  // impact.hpp
+  if (rough)  // the tangential impulses' work too (friction_impact.hpp)
+    out.energy_lost -= out.tangent_impulse.dot(friction->rate + out.tangent_rate) / 2;
   out.constraint_work = kinetic_energy(m, out.q1) - kinetic_energy(m, q1) + out.energy_lost;
   if (!out.q1.allFinite())
     throw Error("impact of " + names + " at t = " + fmt(t) + " s: non-finite velocities after it",

@@ -32,19 +32,30 @@ inline constexpr int kMaxImpactContacts = 8;
 // enumeration; false if no active set gives one (to tol, relative to |q|).
 bool solve_lcp_enumerate(const Eigen::MatrixXd& W, const Eigen::VectorXd& q, Eigen::VectorXd& P);
 
+// The contacts' friction at an impact (friction_impact.hpp): their tangents' Jacobians J_t (rows,
+// k x n1; 0 for a frictionless contact), sliding rates v_t- and coefficients mu.
+struct ImpactFriction {
+  Eigen::MatrixXd J;
+  Eigen::VectorXd rate, mu;
+};
+
 struct ImpactResult {
-  Eigen::VectorXd q1;          // v+
-  Eigen::VectorXd impulse;     // P per contact (N s)
-  Eigen::VectorXd rate;        // g'+ per contact (m/s)
-  double energy_lost = 0;      // J, dissipated by the contacts' impulses
-  double constraint_work = 0;  // J, done by the other constraints' impulses (0 if none moves)
+  Eigen::VectorXd q1;               // v+
+  Eigen::VectorXd impulse;          // P per contact (N s)
+  Eigen::VectorXd rate;             // g'+ per contact (m/s)
+  Eigen::VectorXd tangent_impulse;  // P_t per contact (N s; 0 without friction)
+  Eigen::VectorXd tangent_rate;     // v_t+ per contact (m/s; without friction: v_t-)
+  double energy_lost = 0;           // J, dissipated by the contacts' impulses
+  double constraint_work = 0;       // J, done by the other constraints' impulses (0 if none moves)
 };
 
 // The impact at (t, q0) with velocities q1 (v-), the contacts' gradients J (rows, k x n1), their
-// rates g'- and restitutions e. Throws Error naming `names` and t if the LCP has no solution.
+// rates g'- and restitutions e; with friction (any mu > 0) the law of friction_impact.hpp, its
+// impulses' work counted in energy_lost. Throws Error naming `names` and t if the LCP has no
+// solution.
 ImpactResult newton_impact(const Model& m, double t, const Eigen::VectorXd& q0,
                            const Eigen::VectorXd& q1, const Eigen::MatrixXd& J,
                            const Eigen::VectorXd& rate, const Eigen::VectorXd& e,
-                           const std::string& names);
+                           const std::string& names, const ImpactFriction* friction = nullptr);
 
 }  // namespace mo2d::detail

@@ -86,6 +86,7 @@ void read_law(const Reader& r, const YAML::Node& value, const std::string& what,
   l.restitution = r.number(e, what + ".restitution");
   if (!(l.restitution >= 0 && l.restitution <= 1))
     r.fail(e, what + ".restitution: must be in [0, 1] (got " + std::to_string(l.restitution) + ")");
+  if (value["friction"].IsDefined()) l.friction = non_negative(r, value, "friction", 0.0, what);
   const bool compliant = l.kind == ContactLaw::Kind::compliant;
   for (const char* key : {"stiffness", "exponent", "min_approach_speed"})
     if (!compliant && value[key].IsDefined())
@@ -106,7 +107,7 @@ void read_contacts(const Reader& r, const YAML::Node& node, SystemInfo& info, Sc
     const std::string what = "contact '" + key.Scalar() + "'";
     r.check_keys(value,
                  {"point", "radius", "line", "circle", "hole", "target_radius", "law",
-                  "restitution", "stiffness", "exponent", "min_approach_speed"},
+                  "restitution", "stiffness", "exponent", "min_approach_speed", "friction"},
                  what);
     for (const ContactDef& c : scene.contacts)
       if (c.name == key.Scalar()) r.fail(key, what + ": defined twice");

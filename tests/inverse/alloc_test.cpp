@@ -475,4 +475,72 @@ TEST(NoAllocation, ContactForces) {
   EXPECT_GT(data.a[model.rate("ball.C.vy")], -9.81);
 }
 
+// Friction in the contacts' forces (contact_forces.hpp): a compliant contact sliding (its force
+// -mu F s), a persistent one sticking (a tangent row), and a block's two corners sticking on the
+// ground (equal tangent rows: the null space and the least weighted split, fixed-size).
+TEST(NoAllocation, ContactFrictionForces) {
+  mo2d::System sys("rough");
+  sys.add_ground_node("L", {-5, 0});
+  sys.add_ground_node("R", {5, 0});
+  sys.add_body({.name = "block",
+                .nodes = {{"A", {-0.2, 0}}, {"B", {0.2, 0}}},
+                .mass = 2,
+                .inertia = 0.05,
+                .com = mo2d::CenterOfMass::at_point({0, 0.1})});
+  sys.add_body({.name = "ball", .nodes = {{"C", {2, 0.0999}}}, .mass = 1, .inertia = 0.01});
+  sys.set_gravity({3, -9.81});  // pushes the block along: its corners' friction holds it
+  const mo2d::Model model = mo2d::build_model(sys);
+  mo2d::ContactLaw soft, hard;
+  soft.stiffness = 1e6;
+  soft.restitution = 0.8;
+  soft.friction = 0.3;
+  hard.kind = mo2d::ContactLaw::Kind::rigid;
+  hard.friction = 0.5;
+  std::vector<mo2d::detail::CompiledContact> cs;
+  cs.push_back(mo2d::detail::compile_contact(model, {.name = "floor",
+                                                     .point = "ball.C",
+                                                     .radius = 0.1,
+                                                     .a = "ground.L",
+                                                     .b = "ground.R",
+                                                     .law = soft}));
+  for (const char* corner : {"block.A", "block.B"})
+    cs.push_back(mo2d::detail::compile_contact(
+        model, {.name = corner, .point = corner, .a = "ground.L", .b = "ground.R", .law = hard}));
+  mo2d::ForwardOptions o{.integrator = mo2d::Integrator::dopri5};
+  mo2d::detail::ContactForces forces(model, std::move(cs), o, 0.0);
+  using mo2d::detail::ContactMode;
+  using mo2d::detail::SlideMode;
+  forces.mode = {ContactMode::compliant, ContactMode::persistent, ContactMode::persistent};
+  forces.slide = {SlideMode::slip, SlideMode::stick, SlideMode::stick};
+  forces.v0 = {0.5, 0, 0};
+  o.extra_forces = [&forces](double t, const Eigen::VectorXd& q0, const Eigen::VectorXd& q1,
+                             Eigen::VectorXd& f) { return forces.add(t, q0, q1, f); };
+  mo2d::ForwardData data(model, o);
+  const mo2d::State s = mo2d::consistent_state(model, {.positions = {},
+                                                       .velocities = {{"block.A.vx", 0.0},
+                                                                      {"block.A.vy", 0.0},
+                                                                      {"block.w", 0.0},
+                                                                      {"ball.C.vx", 1.0},
+                                                                      {"ball.C.vy", -0.3},
+                                                                      {"ball.w", 0.0}}});
+  const Eigen::VectorXd u = Eigen::VectorXd::Zero(model.n_inputs());
+  mo2d::forward_accelerations(model, data, 0.0, s.q0, s.q1, u);
+  Counts c;
+  {
+    CountAllocations scope;
+    for (int k = 0; k < 100; ++k) mo2d::forward_accelerations(model, data, 1e-3 * k, s.q0, s.q1, u);
+    c = scope.stop();
+  }
+  EXPECT_EQ(c.news, 0) << "operator new calls in 100 evaluations";
+  EXPECT_EQ(c.mallocs, 0) << "malloc/calloc/realloc calls in 100 evaluations";
+  if (c.news != 0 || c.mallocs != 0) print_traces();
+  // the corners hold the block against the push 3 m: friction -6 N in all, shared in proportion
+  // to the normal forces (which sum to m g)
+  EXPECT_NEAR(forces.tangential[1] + forces.tangential[2], -6, 1e-9);
+  EXPECT_NEAR(forces.normal[1] + forces.normal[2], 2 * 9.81, 1e-9);
+  EXPECT_NEAR(forces.tangential[1] / forces.normal[1], forces.tangential[2] / forces.normal[2],
+              1e-9);
+  EXPECT_NEAR(forces.tangential[0], -0.3 * forces.normal[0], 1e-12);  // the ball slides forward
+}
+
 }  // namespace

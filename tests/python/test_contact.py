@@ -109,3 +109,26 @@ def test_inverse_holds_the_cam_follower_on_its_cam(mechanisms):
             assert c["t_negative"] == pytest.approx(lift, rel=1e-9)
             assert c["preload"] == pytest.approx(-c["min_force"], abs=0)
             assert len(warned) == 1 and "negative (pulling) contact force" in warned[0]
+
+
+def test_rocking_block_pivots_with_housners_ratio(mechanisms):
+    """mechanisms/rocking_block.yaml (friction: mu on both corners): each impact's landing speed
+    is r = 1 - (3/2) sin^2(alpha) times the one before (Housner 1963), no corner slides, and the
+    scene's friction is in the contact's summary."""
+    r = mo2d.forward(mo2d.load_scene(mechanisms / "rocking_block.yaml"))
+    b, h = 0.1, 0.3  # the scene's parameters
+    ratio = 1 - 1.5 * math.sin(math.atan(b / h)) ** 2
+    hits = [x for x in r.events if x["kind"] == "impact"]
+    assert len(hits) == 10
+    assert [x["contact"] for x in hits[:2]] == ["cornerA", "cornerB"]
+    for a, c in zip(hits, hits[1:]):
+        assert c["speed"] / a["speed"] == pytest.approx(ratio, abs=1e-9)
+    assert not [x for x in r.events if x["kind"] in ("slip", "stick")]
+
+
+def test_friction_key_in_the_json_summary(mechanisms, mo2d_cli, tmp_path):
+    subprocess.run([mo2d_cli, "forward", str(mechanisms / "rocking_block.yaml"), "--out",
+                    str(tmp_path)], check=True, capture_output=True)
+    summary = json.loads((tmp_path / "rocking_block_forward.json").read_text())
+    assert summary["contacts"]["contacts"]["cornerA"] == {"law": "rigid", "restitution": 0.0,
+                                                         "friction": 1.0}

@@ -83,6 +83,16 @@ TEST(ContactSceneErrors, UnknownKeyAndPoint) {
                        "contact 'floor': missing required key 'point'");
 }
 
+// friction: a number >= 0 (0.3 runs)
+TEST(ContactSceneErrors, Friction) {
+  expect_contact_error(
+      contact_replaced("    restitution: 0.8", "    restitution: 0.8\n    friction: -1"),
+      "bad.yaml:19:15", "contact 'floor'.friction: must be >= 0");
+  EXPECT_EQ(contact_error_of(contact_replaced("    restitution: 0.8",
+                                              "    restitution: 0.8\n    friction: 0.3")),
+            "");
+}
+
 TEST(ContactSceneErrors, Targets) {
   expect_contact_error(contact_replaced("    line: [ground.L, ground.R]\n", ""), "bad.yaml:14:5",
                        "contact 'floor': no target");
