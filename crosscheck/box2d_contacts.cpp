@@ -1,8 +1,8 @@
 // Contacts (issue 35, item 4) and constant-speed drives in the Box2D world; see box2d_world.hpp.
 //
 // Translation of a contact (mo2d/contact.hpp) into two fixtures, one on each body (density 0: the
-// bodies keep the mass data set by build_box2d_world), friction 0 (mo2d has no Coulomb friction
-// in contacts yet), restitution e on both (Box2D mixes restitutions by max), restitution
+// bodies keep the mass data set by build_box2d_world), friction 0 (a contact with Coulomb
+// friction, ContactLaw::friction > 0, is refused: not compared with Box2D's yet), restitution e on both (Box2D mixes restitutions by max), restitution
 // threshold CrosscheckOptions::restitution_threshold on both (mixed by min; 2.4.1 has no global
 // b2_velocityThreshold: the threshold is b2FixtureDef::restitutionThreshold, default 1 m/s):
 //   circle of radius r around P (r = 0: a point) -> b2CircleShape {P, r}
@@ -11,7 +11,7 @@
 //       (mo2d's line is unbounded), and moved by b2_polygonRadius (1 cm: the skin Box2D puts
 //       around every edge) into the obstacle, so that Box2D's shapes touch where mo2d's gap is 0
 //   circle of radius R around a, from outside    -> b2CircleShape {a, R} (circles have no skin)
-//   hole, compliant law                          -> refused (docs/contact.md, "Box2D")
+//   hole, compliant law, friction > 0            -> refused (docs/contact.md, "Box2D")
 // Each contact's two fixtures collide with each other only (filter category and mask bit k), so
 // the shapes of different contacts never meet. Box2D does not collide two bodies that a joint
 // connects (b2JointDef::collideConnected false): such a contact is refused.
@@ -80,6 +80,10 @@ void add_contact_shapes(const Model& m, Box2DWorld& w, const std::vector<Contact
       refuse_contact(c,
                      "a compliant (Lankarani-Nikravesh) law has no Box2D equivalent (its contacts "
                      "are rigid, with restitution)");
+    if (c.law.friction > 0)
+      refuse_contact(c, "Coulomb friction (friction " + detail::fmt(c.law.friction, 3) +
+                            "): the cross-check compares frictionless contacts only (Box2D's "
+                            "friction is not compared with mo2d's yet)");
     if (c.target == ContactDef::Target::hole)
       refuse_contact(c,
                      "a pin in a hole: Box2D 2.4.1 has no hole shape, and its contacts rest up to "
