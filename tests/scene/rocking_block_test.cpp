@@ -88,7 +88,9 @@ TEST(RockingBlock, ImpactsFollowHousnersClosedForms) {
     EXPECT_NEAR(hits[k].speed, 2 * b * w, 1e-9) << "impact " << k;
     EXPECT_NEAR(hits[k].speed_after, 0, 1e-12) << "impact " << k;
     EXPECT_NEAR(hits[k].energy_lost, I_O * w * w * (1 - r * r) / 2, 1e-9) << "impact " << k;
-    if (k > 0) EXPECT_NEAR(hits[k].speed / hits[k - 1].speed, r, 1e-9) << "impact " << k;
+    if (k > 0) {
+      EXPECT_NEAR(hits[k].speed / hits[k - 1].speed, r, 1e-9) << "impact " << k;
+    }
     w *= r;
     tilt = alpha - std::acos(std::cos(alpha) + w * w / (2 * p2));
     t += 2 * rocking_quarter_time(tilt, alpha, p2);
