@@ -2,8 +2,9 @@
 //
 // Translation of a contact (mo2d/contact.hpp) into two fixtures, one on each body (density 0: the
 // bodies keep the mass data set by build_box2d_world), friction 0 (a contact with Coulomb
-// friction, ContactLaw::friction > 0, is refused: not compared with Box2D's yet), restitution e on both (Box2D mixes restitutions by max), restitution
-// threshold CrosscheckOptions::restitution_threshold on both (mixed by min; 2.4.1 has no global
+// friction, ContactLaw::friction > 0, is refused: not compared with Box2D's yet), restitution e on
+// both (Box2D mixes restitutions by max), restitution threshold
+// CrosscheckOptions::restitution_threshold on both (mixed by min; 2.4.1 has no global
 // b2_velocityThreshold: the threshold is b2FixtureDef::restitutionThreshold, default 1 m/s):
 //   circle of radius r around P (r = 0: a point) -> b2CircleShape {P, r}
 //   line a -> b (free side on the left)          -> one-sided b2EdgeShape from b to a (Box2D's
