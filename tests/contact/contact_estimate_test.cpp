@@ -10,23 +10,11 @@ namespace {
 
 using namespace contact_test;
 
-// The pendulum of RigidContact.PendulumHitsAStop: a uniform rod (0.8 m, 2 kg) pinned at the
-// ground origin, released horizontal, hits the stop x = 0 with its tip when vertical (e = 0.6).
-// Its coordinates are the tip's position (lengths).
-Model stop_pendulum() {
-  const double L = 0.8, m = 2;
-  System s("stop");
-  s.add_ground_node("O", {0, 0});
-  s.add_ground_node("S1", {0, 1});
-  s.add_ground_node("S2", {0, -2});
-  s.add_body({.name = "rod",
-              .nodes = {{"O", {0, 0}}, {"B", {L, 0}}},
-              .mass = m,
-              .inertia = m * L * L / 12,
-              .com = CenterOfMass::between("O", "B", 0.5)});
-  s.add_revolute({.name = "pivot", .node_a = "ground.O", .node_b = "rod.O"});
-  s.set_gravity({0, -9.81});
-  return build_model(s);
+// The pendulum of RigidContact.PendulumHitsAStop: a uniform rod (0.8 m, 2 kg) released horizontal
+// hits the stop x = 0 with its tip when vertical (e = 0.6). Its coordinates are the tip's position
+// (lengths).
+Model estimate_pendulum() {
+  return stop_pendulum(0.8, 2, 9.81);
 }
 
 std::vector<ContactDef> stop_contact() {
@@ -57,7 +45,7 @@ ContactRun stop_run(const Model& m, double rtol, ErrorEstimate estimate, double 
 // to within a factor 3 — the estimator's use is the order of magnitude; an estimator that compares
 // the wrong runs or columns, or a second run that is not tighter, is off by orders of magnitude.
 TEST(ContactEstimate, GivesTheErrorOfARunWithImpacts) {
-  const Model m = stop_pendulum();
+  const Model m = estimate_pendulum();
   const ContactRun run = stop_run(m, 1e-6, ErrorEstimate::on);
   const ContactRun ref = stop_run(m, 1e-12, ErrorEstimate::off);
   ASSERT_EQ(run.trajectory.time.size(), ref.trajectory.time.size());
@@ -81,7 +69,7 @@ TEST(ContactEstimate, GivesTheErrorOfARunWithImpacts) {
 }
 
 TEST(ContactEstimate, RunsWhenAskedForOrForAnAccuracy) {
-  const Model m = stop_pendulum();
+  const Model m = estimate_pendulum();
   // automatic without an accuracy: not estimated, and said so
   ContactRun r = stop_run(m, 1e-6, ErrorEstimate::automatic);
   EXPECT_TRUE(std::isnan(r.trajectory.stats.estimated_error));

@@ -21,6 +21,24 @@ inline System ball_scene(double m, double x, double y, double g) {
   return s;
 }
 
+// A uniform rod (length L, mass m) pinned at the ground origin O, lying along +x, with the ground
+// points S1 (0, 1) and S2 (0, -2) of a stop line x = 0, gravity (0, -g): released, its tip B hits
+// the stop when vertical.
+inline Model stop_pendulum(double L, double m, double g) {
+  System s("stop");
+  s.add_ground_node("O", {0, 0});
+  s.add_ground_node("S1", {0, 1});
+  s.add_ground_node("S2", {0, -2});
+  s.add_body({.name = "rod",
+              .nodes = {{"O", {0, 0}}, {"B", {L, 0}}},
+              .mass = m,
+              .inertia = m * L * L / 12,
+              .com = CenterOfMass::between("O", "B", 0.5)});
+  s.add_revolute({.name = "pivot", .node_a = "ground.O", .node_b = "rod.O"});
+  s.set_gravity({0, -g});
+  return build_model(s);
+}
+
 // The ground contact of the ball: a circle of radius r around ball.C against the line L -> R.
 inline ContactDef ground_contact(double r, ContactLaw law) {
   return {.name = "floor",

@@ -84,18 +84,7 @@ TEST(RigidContact, ZenoAccumulationBecomesPersistentContact) {
 // and the rod comes back to hit again at e times the speed.
 TEST(RigidContact, PendulumHitsAStop) {
   const double L = 0.8, m = 2, g = 9.81, e = 0.6;
-  System s("stop");
-  s.add_ground_node("O", {0, 0});
-  s.add_ground_node("S1", {0, 1});
-  s.add_ground_node("S2", {0, -2});
-  s.add_body({.name = "rod",
-              .nodes = {{"O", {0, 0}}, {"B", {L, 0}}},
-              .mass = m,
-              .inertia = m * L * L / 12,
-              .com = CenterOfMass::between("O", "B", 0.5)});
-  s.add_revolute({.name = "pivot", .node_a = "ground.O", .node_b = "rod.O"});
-  s.set_gravity({0, -g});
-  const Model model = build_model(s);
+  const Model model = stop_pendulum(L, m, g);
   const State st = consistent_state(model, {.positions = {}, .velocities = {{"rod.w", 0.0}}});
   ContactOptions o;
   o.forward = tight(1.5, 16);
