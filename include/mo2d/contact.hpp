@@ -52,10 +52,15 @@ struct ContactDef {
   // What it touches: a line through a and b (the free side is the left of a -> b: the normal
   // z x (b - a) / |b - a| points out of the obstacle), a circle around a of radius
   // `target_radius` touched from outside, or a hole: the circle is inside it (a pin in a hole
-  // with the clearance target_radius - radius > 0).
-  enum class Target { line, circle, hole } target = Target::line;
+  // with the clearance target_radius - radius > 0), or a slot: the circle moves in a straight slot
+  // of `width` > 2 radius whose centre line runs from a (its closed end, a flat wall) to b (its
+  // open mouth), a and b on one body or the ground (src/contact/slot.hpp; its two walls and its end
+  // are three contacts named NAME.left, NAME.right, NAME.end; outside the slot the walls' ends,
+  // the lips, are point contacts and the pin enters through the mouth).
+  enum class Target { line, circle, hole, slot } target = Target::line;
   std::string a{}, b{};
   double target_radius = 0;
+  double width = 0;  // slot: its width (m)
   ContactLaw law{};
 };
 
@@ -75,8 +80,9 @@ GapValue contact_gap(const Model& m, const ContactDef& c, const Eigen::VectorXd&
 // One event of a contact run.
 struct ContactEvent {
   // a compliant contact closes (onset) or opens (exit); a rigid one is hit (impact), lifts off
-  // (lift_off: its multiplier reached 0) or ends its accumulating impacts (zeno)
-  enum class Kind { onset, exit, impact, lift_off, zeno };
+  // (lift_off: its multiplier reached 0) or ends its accumulating impacts (zeno); a pin enters
+  // a slot through its mouth (enter) or leaves it (leave; `contact` names the slot)
+  enum class Kind { onset, exit, impact, lift_off, zeno, enter, leave };
   Kind kind = Kind::onset;  // what happened
   double t = 0;             // s
   std::string contact;      // its name
@@ -87,7 +93,7 @@ struct ContactEvent {
   double speed_after = 0;   // impact: the separation speed g' after it (m/s; e * speed alone)
 };
 
-// The kind's name: "onset", "exit", "impact", "lift_off", "zeno".
+// The kind's name: "onset", "exit", "impact", "lift_off", "zeno", "enter", "leave".
 const char* contact_event_name(ContactEvent::Kind kind);
 
 // The settings of a contact run: the forward options (integrator, tolerances, output times, ...;

@@ -39,6 +39,9 @@ void ContactRunner::count_event(double t, const std::string& who) {
 }
 
 void ContactRunner::handle(State& s) {
+  const size_t before = events_.size();  // a pin entering or leaving a slot (slot_set.hpp)
+  const bool any_slot = slots_->handle(m_, s.t, s.q0, events_) > 0;
+  for (size_t k = before; k < events_.size(); ++k) count_event(s.t, events_[k].contact);
   bool persistent = false;  // the multipliers at s
   for (int i = 0; i < forces_->size(); ++i) persistent |= mode(i) == ContactMode::persistent;
   if (persistent) {
@@ -70,7 +73,8 @@ void ContactRunner::handle(State& s) {
       closing.push_back(i);
     }
   }
-  if (!any)  // the root finding stopped where no condition is <= 0 (cannot happen): never loop
+  if (!any &&
+      !any_slot)  // the root finding stopped where no condition is <= 0 (cannot happen): never loop
     throw Error("contact dynamics of '" + m_.name + "': an event at t = " + fmt(s.t) +
                     " s that no contact's condition shows: internal error, please report it",
                 m_.name, s.t);
