@@ -101,7 +101,8 @@ TEST(GenevaScene, WheelFollowsTheClosedFormWithinTheClearance) {
     EXPECT_NEAR(tr.q0(i, px), C - R * std::cos(alpha), 1e-9 * R) << t;
     EXPECT_NEAR(tr.q0(i, py), -R * std::sin(alpha), 1e-9 * R) << t;
     for (size_t k = 0; k < eng.size(); ++k) {
-      if (!(t > eng[k].from && t < eng[k].to)) continue;
+      // (the first entry, the wheel in line, is at -alpha0 exactly: a sample's time)
+      if (!(t >= eng[k].from && t <= eng[k].to)) continue;
       // slot k's direction (counterclockwise from +x): wheel.B0's direction + k pi / 2
       const double psi = std::atan2(tr.q0(i, by), tr.q0(i, bx)) + static_cast<double>(k) * pi / 2;
       const double beta = -psi, ideal = std::atan2(std::sin(alpha), C / R - std::cos(alpha));

@@ -87,7 +87,9 @@ TEST(SlotSceneErrors, SlotTargets) {
   expect_slot_error(slot_replaced("    law:", "    target_radius: 1\n    law:"), "bad.yaml:15:20",
                     "target_radius: only for a circle or a hole");
   expect_slot_error(slot_replaced("    law:", "    line: [ground.A, ground.B]\n    law:"),
-                    "bad.yaml:15:5", "give one target, 'line', 'circle', 'hole' or 'slot'");
+                    "bad.yaml:13:11",
+                    "give one target, 'line', 'circle', 'hole' or 'slot' (both 'line' and 'slot' "
+                    "given)");
   // the slot no longer than the pin's radius: at the contact's key, from the run's check
   expect_slot_error(slot_replaced("B: [1, 0]", "B: [0.05, 0]"), "bad.yaml:10:3",
                     "the slot from 'ground.A' to 'ground.B' is 0.05 m long, not longer than the "
