@@ -92,6 +92,10 @@ void add_contact_shapes(const Model& m, Box2DWorld& w, const std::vector<Contact
                          detail::fmt(c.target_radius - c.radius, 3) +
                          " m): the ring of edges that would stand for the hole is not built "
                          "(docs/contact.md, \"Box2D\")");
+    if (c.target == ContactDef::Target::slot)
+      refuse_contact(c,
+                     "a pin in a slot: its walls, closed end and lips (docs/contact.md, \"A pin "
+                     "in a slot\") are not built as Box2D edges");
     const int other = cc.a.body;
     if (cc.p.body == other) refuse_contact(c, "its point and its target are on the same body");
     if (joined(m, cc.p.body, other))

@@ -5,7 +5,9 @@
 //    a -> b: the free side is the left); the gap is measured to the whole line, the segment shows
 //    where the user put it;
 //  - a circle of radius R around a (touched from outside): its outline, hatched inside;
-//  - a hole of radius R around a (the circle is inside it): its outline, hatched outside.
+//  - a hole of radius R around a (the circle is inside it): its outline, hatched outside;
+//  - a slot of width w from its closed end a to its mouth b: its two walls (a -> b, w/2 to
+//    either side of the centre line) and its flat end across a, each hatched outside the slot.
 // The shapes are outlined in a dark shade of their body's colour (the ground's grey on the ground),
 // over the bodies, so a closed contact shows as two outlines that touch.
 #include <algorithm>
@@ -35,11 +37,15 @@ void plan_contacts(FramePlan& p, Eigen::AlignedBox2d& box) {
       FramePlan::ContactAt& a = p.contacts[k][c];
       a.p = point_state(m, cc.p, q0, q1).p;
       a.a = point_state(m, cc.a, q0, q1).p;
-      a.b = cc.def.target == ContactDef::Target::line ? point_state(m, cc.b, q0, q1).p : a.a;
-      const Vec2 r(cc.def.radius, cc.def.radius), R(cc.def.target_radius, cc.def.target_radius);
+      const bool two =
+          cc.def.target == ContactDef::Target::line || cc.def.target == ContactDef::Target::slot;
+      a.b = two ? point_state(m, cc.b, q0, q1).p : a.a;
+      const double half = cc.def.target == ContactDef::Target::slot ? cc.def.width / 2 : 0.0;
+      const Vec2 r(cc.def.radius, cc.def.radius), R(cc.def.target_radius + half,
+                                                     cc.def.target_radius + half);
       box.extend(a.p - r), box.extend(a.p + r);
       box.extend(a.a - R), box.extend(a.a + R);
-      box.extend(a.b);
+      box.extend(a.b - R), box.extend(a.b + R);
     }
   }
   p.contact_bodies.clear();
@@ -71,6 +77,18 @@ void hatched_circle(cairo_t* cr, const Vec2& c, double r, double depth, int inwa
   cairo_stroke(cr);
 }
 
+// A slot from its closed end pa to its mouth pb (pixels), `half` = w/2 in pixels: the walls and
+// the end, hatched on the material's side (outside the channel).
+void draw_slot(cairo_t* cr, const Vec2& pa, const Vec2& pb, double half, double depth,
+               const Rgb& colour, double width) {
+  const Vec2 d = pb - pa;
+  if (!(d.norm() > 0)) return;
+  const Vec2 t = d / d.norm(), n(-t.y(), t.x());  // n: one side of the centre line, in pixels
+  for (const double k : {1.0, -1.0})
+    draw_hatched_line(cr, pa + k * half * n, pb + k * half * n, k * n, depth, colour, width);
+  draw_hatched_line(cr, pa - half * n, pa + half * n, -t, depth, colour, width);
+}
+
 }  // namespace
 
 void draw_contacts(cairo_t* cr, const FramePlan& p, int k) {
@@ -93,6 +111,9 @@ void draw_contacts(cairo_t* cr, const FramePlan& p, int k) {
       const Vec2 obstacle = d.norm() > 0 ? Vec2(Vec2(-d.y(), d.x()) / d.norm()) : Vec2(0, 1);
       draw_hatched_line(cr, pa, pb, obstacle, depth, shape_colour(s, target_body),
                         P * s.line_width);
+    } else if (def.target == ContactDef::Target::slot) {
+      draw_slot(cr, pa, to_pixel(p.view, a.b), def.width / 2 * scale, depth,
+                shape_colour(s, target_body), P * s.line_width);
     } else if (def.target == ContactDef::Target::circle || def.target == ContactDef::Target::hole) {
       const double R = def.target_radius * scale;
       circle(cr, pa, R);

@@ -56,10 +56,15 @@ struct ContactDef {
   // What it touches: a line through a and b (the free side is the left of a -> b: the normal
   // z x (b - a) / |b - a| points out of the obstacle), a circle around a of radius
   // `target_radius` touched from outside, or a hole: the circle is inside it (a pin in a hole
-  // with the clearance target_radius - radius > 0).
-  enum class Target { line, circle, hole } target = Target::line;
+  // with the clearance target_radius - radius > 0), or a slot: the circle moves in a straight slot
+  // of `width` > 2 radius whose centre line runs from a (its closed end, a flat wall) to b (its
+  // open mouth), a and b on one body or the ground (src/contact/slot.hpp; its two walls and its end
+  // are three contacts named NAME.left, NAME.right, NAME.end; outside the slot the walls' ends,
+  // the lips, are point contacts and the pin enters through the mouth).
+  enum class Target { line, circle, hole, slot } target = Target::line;
   std::string a{}, b{};
   double target_radius = 0;
+  double width = 0;  // slot: its width (m)
   ContactLaw law{};
 };
 
@@ -96,8 +101,9 @@ struct ContactEvent {
   // (lift_off: its multiplier reached 0) or ends its accumulating impacts (zeno); a closed contact
   // with friction starts sticking (stick: its sliding rate reached 0 and the force that holds it
   // fits in the friction cone) or sliding (slip: its sticking force reached the cone's edge, or
-  // it slides back at once after stopping)
-  enum class Kind { onset, exit, impact, lift_off, zeno, stick, slip };
+  // it slides back at once after stopping); a pin enters a slot through its mouth (enter) or
+  // leaves it (leave; `contact` names the slot)
+  enum class Kind { onset, exit, impact, lift_off, zeno, stick, slip, enter, leave };
   Kind kind = Kind::onset;  // what happened
   double t = 0;             // s
   std::string contact;      // its name
@@ -109,7 +115,8 @@ struct ContactEvent {
   double speed_after = 0;
 };
 
-// The kind's name: "onset", "exit", "impact", "lift_off", "zeno", "stick", "slip".
+// The kind's name: "onset", "exit", "impact", "lift_off", "zeno", "stick", "slip", "enter",
+// "leave".
 const char* contact_event_name(ContactEvent::Kind kind);
 
 // The settings of a contact run: the forward options (integrator, tolerances, output times, ...;

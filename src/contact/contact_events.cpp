@@ -39,6 +39,9 @@ void ContactRunner::count_event(double t, const std::string& who) {
 }
 
 void ContactRunner::handle(State& s) {
+  const size_t before = events_.size();  // a pin entering or leaving a slot (slot_set.hpp)
+  const bool any_slot = slots_->handle(m_, s.t, s.q0, events_) > 0;
+  for (size_t k = before; k < events_.size(); ++k) count_event(s.t, events_[k].contact);
   if (any_rows()) update_forces(s.t, s.q0, s.q1);  // the multipliers and sliding rates at s
   std::vector<int> closing, sliding;
   bool any = false;
@@ -71,7 +74,8 @@ void ContactRunner::handle(State& s) {
       closing.push_back(i);
     }
   }
-  if (!any)  // the root finding stopped where no condition is <= 0 (cannot happen): never loop
+  // the root finding stopped where no condition is <= 0 (cannot happen): never loop
+  if (!any && !any_slot)
     throw Error("contact dynamics of '" + m_.name + "': an event at t = " + fmt(s.t) +
                     " s that no contact's condition shows: internal error, please report it",
                 m_.name, s.t);

@@ -5,6 +5,7 @@
 #include "contact/circle_circle.hpp"
 #include "contact/contact_set.hpp"
 #include "contact/point_line.hpp"
+#include "contact/slot_set.hpp"
 #include "dynamics/points.hpp"
 #include "mo2d/error.hpp"
 #include "run/format.hpp"
@@ -55,6 +56,10 @@ void check_law(const ContactDef& c) {
     bad("the friction coefficient must be >= 0 (got " + fmt(l.friction) + ")");
   if (!(c.radius >= 0 && std::isfinite(c.radius)))
     bad("the radius must be >= 0 (got " + fmt(c.radius) + ")");
+  if (c.target == ContactDef::Target::slot) {
+    check_slot(c);
+    return;
+  }
   if (c.target != ContactDef::Target::line &&
       !(c.target_radius > 0 && std::isfinite(c.target_radius)))
     bad("a circle or hole needs target_radius > 0 (got " + fmt(c.target_radius) + ")");
@@ -74,10 +79,11 @@ CompiledContact compile_contact(const Model& m, const ContactDef& c) {
   CompiledContact out;
   out.def = c;
   out.p = resolve(m, c, c.point, "point");
-  out.a = resolve(m, c, c.a, c.target == ContactDef::Target::line ? "line point a" : "centre a");
-  if (c.target == ContactDef::Target::line) out.b = resolve(m, c, c.b, "line point b");
-  if (out.p.body >= 0 && (out.p.body == out.a.body ||
-                          (c.target == ContactDef::Target::line && out.p.body == out.b.body)))
+  const bool two = c.target == ContactDef::Target::line || c.target == ContactDef::Target::slot;
+  out.a = resolve(m, c, c.a, two ? "point a" : "centre a");
+  if (two) out.b = resolve(m, c, c.b, "point b");
+  if (c.target == ContactDef::Target::slot) check_slot_points(m, out);
+  if (out.p.body >= 0 && (out.p.body == out.a.body || (two && out.p.body == out.b.body)))
     throw Error("contact '" + c.name + "': its point and what it touches are on the same body",
                 c.name);
   if (c.law.friction > 0 && c.target == ContactDef::Target::line && out.a.body != out.b.body)
@@ -110,6 +116,10 @@ void gap_into(const Model& m, const CompiledContact& c, const Eigen::Ref<const E
   const Jet px = coordinate_jet(P.p.x(), P.v.x()), py = coordinate_jet(P.p.y(), P.v.y());
   const Jet ax = coordinate_jet(A.p.x(), A.v.x()), ay = coordinate_jet(A.p.y(), A.v.y());
   out.J.setZero();
+  if (c.def.target == ContactDef::Target::slot) {
+    slot_gap_into(m, c, q0, q1, out);
+    return;
+  }
   Jet g;
   if (c.def.target == ContactDef::Target::line) {
     const PointState B = point_state(m, c.b, q0, q1);
@@ -146,6 +156,7 @@ double gap_only(const Model& m, const CompiledContact& c,
     return p.body < 0 ? p.fixed
                       : local_position_of_point(m.bodies[p.body], q0, p.ci, p.cj, p.gamma, p.rho);
   };
+  if (c.def.target == ContactDef::Target::slot) return slot_gap_only(m, c, q0);
   const Vec2 P = at(c.p), A = at(c.a);
   if (c.def.target == ContactDef::Target::line) {
     const Vec2 B = at(c.b);

@@ -39,18 +39,21 @@ ContactRunner::ContactRunner(const Model& m, const std::vector<ContactDef>& defs
   tol_g_ = kContactGapTolerance * scale_;
   zeno_time_ = o.zeno_time > 0 ? o.zeno_time : 1e-5 * (inner_.t1 - inner_.t0);
   std::vector<CompiledContact> cs;
-  for (const ContactDef& d : defs) {
-    for (const CompiledContact& c : cs)
-      if (c.def.name == d.name) throw Error("contact '" + d.name + "' is defined twice", d.name);
-    cs.push_back(compile_contact(m, d));
+  for (size_t k = 0; k < defs.size(); ++k) {
+    for (size_t j = 0; j < k; ++j)
+      if (defs[j].name == defs[k].name)
+        throw Error("contact '" + defs[k].name + "' is defined twice", defs[k].name);
+    compile_contacts(m, defs[k], cs);
   }
   forces_ = std::make_unique<ContactForces>(m, std::move(cs), inner_, o.baumgarte_rate);
+  slots_ = std::make_unique<SlotRegions>(forces_->contacts);
   const size_t n = forces_->contacts.size();
   impacts_.resize(n);
   step_end_.assign(n, {NAN, NAN, NAN});
   excursion_warned_.assign(n, false);
   slack_.assign(n, 0.0);
   slack_t_.assign(n, 0.0);
+  unslack_.assign(n, 0);
   scratch_f_ = Eigen::VectorXd::Zero(m.n1);
 }
 
@@ -80,7 +83,7 @@ double ContactRunner::condition(int i, double t, const Eigen::VectorXd& q0,
 double ContactRunner::event(double t, const Eigen::VectorXd& q0, const Eigen::VectorXd& q1) {
   if (any_rows()) update_forces(t, q0, q1);  // the multipliers and sliding rates at this state
   if (t > last_step_t_) check_excursion(t, q0, q1);
-  double c = 1e300;
+  double c = slots_->condition(m_, q0) / scale_;
   for (int i = 0; i < forces_->size(); ++i) c = std::min(c, condition(i, t, q0, q1));
   return c;
 }
@@ -93,13 +96,15 @@ void ContactRunner::check_excursion(double t, const Eigen::VectorXd& q0,
                                     const Eigen::VectorXd& q1) {
   const double t0 = last_step_t_;
   last_step_t_ = t;
+  slots_->step_end(m_, q0);
   for (int i = 0; i < forces_->size(); ++i) {
     const size_t k = static_cast<size_t>(i);
     const GapValue& g = forces_->gap(i, q0, q1);
     const std::array<double, 3> before = step_end_[k];
     step_end_[k] = {t, g.g, g.rate};
+    if (unslack_[k]) slack_[k] = 0, unslack_[k] = 0;  // the step before was taken: no root in it
     if ((mode(i) == ContactMode::open && g.g > 0) || (mode(i) == ContactMode::compliant && g.g < 0))
-      slack_[k] = 0;
+      unslack_[k] = slack_[k] > 0;
     if (forces_->slide[k] == SlideMode::slip &&
         forces_->slip_sign[k] * forces_->tangent(i, q0, q1).rate > 0)
       slack_t_[k] = 0;
@@ -144,6 +149,8 @@ Trajectory ContactRunner::leg(const State& s, double t1, int samples) {
     return event(t, q0, q1);
   };
   last_step_t_ = -1e300;
+  std::fill(unslack_.begin(), unslack_.end(), 0);
+  slots_->leg_start();
   return forward_run(m_, s, o);
 }
 
@@ -152,6 +159,7 @@ ContactRun ContactRunner::run(const State& initial) {
   out_ = switching_trajectory(m_, N);
   State s = initial;
   s.t = inner_.t0;
+  slots_->start(m_, s.q0);
   for (int i = 0; i < forces_->size(); ++i) {
     const double g = gap_only(m_, forces_->contacts[static_cast<size_t>(i)], s.q0);
     if (!std::isfinite(g) || g < -tol_g_)
@@ -231,6 +239,10 @@ const char* contact_event_name(ContactEvent::Kind kind) {
       return "impact";
     case ContactEvent::Kind::lift_off:
       return "lift_off";
+    case ContactEvent::Kind::enter:
+      return "enter";
+    case ContactEvent::Kind::leave:
+      return "leave";
     case ContactEvent::Kind::zeno:
       return "zeno";
     case ContactEvent::Kind::stick:

@@ -29,6 +29,7 @@
 #include <vector>
 
 #include "contact/contact_forces.hpp"
+#include "contact/slot_set.hpp"
 #include "forward/forward_run.hpp"
 #include "mo2d/contact.hpp"
 
@@ -52,6 +53,7 @@ class ContactRunner {
   const ContactOptions& co_;
   ForwardOptions inner_;
   std::unique_ptr<ContactForces> forces_;
+  std::unique_ptr<SlotRegions> slots_;  // the pins in slots (slot_set.hpp)
   double scale_ = 1, tol_g_ = 0, lambda_ref_ = 0;
   double zeno_time_ = 0;  // ContactOptions::zeno_time, or its default
   Trajectory out_;
@@ -66,8 +68,13 @@ class ContactRunner {
   std::vector<std::array<double, 3>> step_end_;
   double last_step_t_ = -1e300;
   std::vector<bool> excursion_warned_;
-  // per contact: the open condition's offset (see the file's description)
+  // per contact: the open condition's offset (see the file's description), and whether it goes
+  // back to 0 at the next step's end: a step end where the gap is strictly inside its mode may
+  // still hold another contact's root, whose search evaluates the condition again at the step's
+  // start, where it needs its slack (a lip hit of mechanisms/geneva.yaml found the root at the
+  // start of the step, at the impact just handled, again and again)
   std::vector<double> slack_;
+  std::vector<char> unslack_;
   // (g from gap_only, which the condition evaluates: gap_into's Jets round differently)
   void loosen(int i, const Eigen::VectorXd& q0) {
     const double g = gap_only(m_, forces_->contacts[static_cast<size_t>(i)], q0);

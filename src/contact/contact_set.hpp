@@ -4,6 +4,7 @@
 // circle_circle.hpp), and the gradient of a function of a body point in the node coordinates.
 #include <Eigen/Core>
 #include <string>
+#include <vector>
 
 #include "mo2d/contact.hpp"
 #include "mo2d/model.hpp"
@@ -11,15 +12,21 @@
 namespace mo2d::detail {
 
 // A contact with its points resolved: p the moving point; a, b the line's points (or a the
-// circle's centre).
+// circle's centre, or the slot's ends). A slot is three of these (slot.hpp): `part` says which
+// (-1: not a slot's part), `inside` whether the pin is in the slot (the run switches it).
 struct CompiledContact {
   ContactDef def;
   BodyPoint p, a, b;
+  int part = -1;
+  bool inside = false;
 };
 
 // Resolves c's point names against m (a named point, a body node "body.node", a ground node).
-// Throws Error naming the contact and the unknown name, or a bad radius or law.
+// Throws Error naming the contact and the unknown name, or a bad radius or law. A slot comes out
+// whole (part -1: its gaps refused); compile_contacts gives its three parts.
 CompiledContact compile_contact(const Model& m, const ContactDef& c);
+// Appends c compiled to out: one contact, or a slot's three parts (slot.cpp).
+void compile_contacts(const Model& m, const ContactDef& c, std::vector<CompiledContact>& out);
 
 // The gap of c at (q0, q1) into out (out.J must have m.n1 entries; written, no allocation).
 void gap_into(const Model& m, const CompiledContact& c, const Eigen::Ref<const Eigen::VectorXd>& q0,

@@ -37,19 +37,47 @@ double positive(const Reader& r, const YAML::Node& n, const std::string& what) {
   return v;
 }
 
-// line: [a, b] | circle: c | hole: c, with target_radius for a circle or a hole.
+// slot: [a, b] with width: a pin in a slot from its closed end a to its mouth b.
+void read_slot(const Reader& r, const YAML::Node& value, const std::string& what,
+               const SystemInfo& info, ContactDef& c) {
+  const YAML::Node t = value["slot"];
+  const std::string key = what + ".slot";
+  if (!t.IsSequence() || t.size() != 2)
+    r.fail(t, key + ": expected two points [A, B] (its closed end A, its mouth B)");
+  c.target = ContactDef::Target::slot;
+  c.a = point_of(r, t[0], key, info);
+  c.b = point_of(r, t[1], key, info);
+  if (c.a == c.b) r.fail(t[1], key + ": the slot's two ends are the same point ('" + c.a + "')");
+  if (value["target_radius"].IsDefined())
+    r.fail(value["target_radius"], what + ".target_radius: only for a circle or a hole");
+  if (!value["width"].IsDefined()) r.fail(value, what + ": a slot needs its width (width)");
+  c.width = positive(r, value["width"], what + ".width");
+  if (!(c.width > 2 * c.radius))
+    r.fail(value["width"], what + ".width: the slot (" + std::to_string(c.width) +
+                               " m) must be wider than the pin's diameter (2 radius = " +
+                               std::to_string(2 * c.radius) +
+                               " m): the clearance is their difference");
+}
+
+// line: [a, b] | circle: c | hole: c, with target_radius for a circle or a hole | slot: [a, b]
+// with width.
 void read_target(const Reader& r, const YAML::Node& value, const std::string& what,
                  const SystemInfo& info, ContactDef& c) {
-  const char* kinds[] = {"line", "circle", "hole"};
+  const char* kinds[] = {"line", "circle", "hole", "slot"};
   const char* given = nullptr;
   for (const char* k : kinds) {
     if (!value[k].IsDefined()) continue;
     if (given)
-      r.fail(value[k], what + ": give one target, 'line', 'circle' or 'hole' (both '" + given +
-                           "' and '" + k + "' given)");
+      r.fail(value[k], what + ": give one target, 'line', 'circle', 'hole' or 'slot' (both '" +
+                           given + "' and '" + k + "' given)");
     given = k;
   }
-  if (!given) r.fail(value, what + ": no target: give 'line: [A, B]', 'circle: C' or 'hole: C'");
+  if (!given)
+    r.fail(value,
+           what + ": no target: give 'line: [A, B]', 'circle: C', 'hole: C' or 'slot: [A, B]'");
+  if (std::string(given) != "slot" && value["width"].IsDefined())
+    r.fail(value["width"], what + ".width: only for a slot");
+  if (std::string(given) == "slot") return read_slot(r, value, what, info, c);
   const YAML::Node t = value[given];
   const std::string key = what + "." + given;
   const YAML::Node radius = value["target_radius"];
@@ -106,8 +134,8 @@ void read_contacts(const Reader& r, const YAML::Node& node, SystemInfo& info, Sc
     check_element_name(r, key, "contact");
     const std::string what = "contact '" + key.Scalar() + "'";
     r.check_keys(value,
-                 {"point", "radius", "line", "circle", "hole", "target_radius", "law",
-                  "restitution", "stiffness", "exponent", "min_approach_speed", "friction"},
+                 {"point", "radius", "line", "circle", "hole", "slot", "target_radius", "width",
+                  "law", "restitution", "stiffness", "exponent", "min_approach_speed", "friction"},
                  what);
     for (const ContactDef& c : scene.contacts)
       if (c.name == key.Scalar()) r.fail(key, what + ": defined twice");
@@ -119,6 +147,8 @@ void read_contacts(const Reader& r, const YAML::Node& node, SystemInfo& info, Sc
     if (c.point == c.a || c.point == c.b)
       r.fail(value["point"], what + ".point: '" + c.point + "' is also a point of its target");
     read_law(r, value, what, c.law);
+    if (c.target == ContactDef::Target::slot && c.law.friction > 0)
+      r.fail(value["friction"], what + ".friction: friction in a slot is not modelled (use 0)");
     info.elements.emplace_back(c.name, r.at(key));
     scene.contact_where.push_back(r.at(key));
     scene.contacts.push_back(std::move(c));

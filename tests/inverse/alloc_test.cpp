@@ -27,6 +27,7 @@
 #include <new>
 
 #include "contact/contact_forces.hpp"
+#include "contact/slot_set.hpp"
 #include "mo2d/contact.hpp"
 #include "mo2d/forward.hpp"
 #include "mo2d/forward_data.hpp"
@@ -552,6 +553,58 @@ TEST(NoAllocation, ContactFrictionForces) {
   EXPECT_NEAR(forces.tangential[1] / forces.normal[1], forces.tangential[2] / forces.normal[2],
               1e-9);
   EXPECT_NEAR(forces.tangential[0], -0.3 * forces.normal[0], 1e-12);  // the ball slides forward
+}
+
+// A pin held on a slot's wall (src/contact/slot.hpp): the slot's three parts' gaps, the wall's
+// multiplier and the slot's region condition, per evaluation without allocation.
+TEST(NoAllocation, SlotContact) {
+  mo2d::System sys("slot_alloc");
+  sys.add_ground_node("A", {0, 0});
+  sys.add_ground_node("B", {1, 0});
+  sys.add_body({.name = "ball", .nodes = {{"C", {0.5, 0.05}}}, .mass = 1});
+  sys.set_gravity({0, 9.81});  // presses the pin on the left wall (l = h = 0.05)
+  const mo2d::Model model = mo2d::build_model(sys);
+  mo2d::ContactLaw hard;
+  hard.kind = mo2d::ContactLaw::Kind::rigid;
+  std::vector<mo2d::detail::CompiledContact> cs;
+  mo2d::detail::compile_contacts(model,
+                                 {.name = "slot",
+                                  .point = "ball.C",
+                                  .radius = 0.1,
+                                  .target = mo2d::ContactDef::Target::slot,
+                                  .a = "ground.A",
+                                  .b = "ground.B",
+                                  .width = 0.3,
+                                  .law = hard},
+                                 cs);
+  mo2d::ForwardOptions o{.integrator = mo2d::Integrator::dopri5};
+  mo2d::detail::ContactForces forces(model, std::move(cs), o, 0.0);
+  mo2d::detail::SlotRegions regions(forces.contacts);
+  const mo2d::State s = mo2d::consistent_state(
+      model, {.positions = {}, .velocities = {{"ball.C.vx", 0.3}, {"ball.C.vy", 0.0}}});
+  regions.start(model, s.q0);
+  forces.mode[0] = mo2d::detail::ContactMode::persistent;
+  o.extra_forces = [&forces](double t, const Eigen::VectorXd& q0, const Eigen::VectorXd& q1,
+                             Eigen::VectorXd& f) { return forces.add(t, q0, q1, f); };
+  mo2d::ForwardData data(model, o);
+  const Eigen::VectorXd u = Eigen::VectorXd::Zero(model.n_inputs());
+  mo2d::forward_accelerations(model, data, 0.0, s.q0, s.q1, u);
+  double c = 0;
+  Counts n;
+  {
+    CountAllocations scope;
+    for (int k = 0; k < 100; ++k) {
+      mo2d::forward_accelerations(model, data, 1e-3 * k, s.q0, s.q1, u);
+      for (int i = 0; i < 3; ++i) (void)forces.gap(i, s.q0, s.q1);
+      c += regions.condition(model, s.q0);
+    }
+    n = scope.stop();
+  }
+  EXPECT_EQ(n.news, 0) << "operator new calls in 100 evaluations";
+  EXPECT_EQ(n.mallocs, 0) << "malloc/calloc/realloc calls in 100 evaluations";
+  if (n.news != 0 || n.mallocs != 0) print_traces();
+  EXPECT_NEAR(forces.lambda[0], 9.81, 1e-9);  // the wall holds the pin's weight
+  EXPECT_NEAR(c, 100 * 0.1, 1e-9);            // inside: min(L - s, w/2 - |l|, s) = 0.1
 }
 
 }  // namespace

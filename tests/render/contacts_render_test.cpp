@@ -1,5 +1,6 @@
 // Contacts in frames (render/contacts.cpp): each contact's circle and what it touches drawn at
-// their world size and place, the fitted view keeping them inside, a bad point named.
+// their world size and place (a slot's walls and end), the fitted view keeping them inside, a bad
+// point named.
 #include <gtest/gtest.h>
 
 #include "mo2d/mo2d.hpp"
@@ -97,6 +98,27 @@ TEST(ContactRender, TheFittedViewKeepsTheContactsShapesInside) {
     EXPECT_GT(px.y(), 0) << x << ", " << y;
     EXPECT_LT(px.y(), o.height) << x << ", " << y;
   }
+}
+
+// A slot of width 0.4 from its closed end L1 (-0.9, -0.6) to its mouth L2 (0.9, -0.6): its walls
+// at y = -0.4 and -0.8 and its end across x = -0.9 drawn, the channel between them left empty,
+// the mouth open.
+TEST(ContactRender, ASlotsWallsAndEndAreDrawnAndItsChannelLeftOpen) {
+  const Model m = contact_bar();
+  FrameOptions o = contact_window();
+  ContactDef slot{.name = "slot", .point = "bar.O", .radius = 0};
+  slot.target = ContactDef::Target::slot;
+  slot.a = "ground.L1";
+  slot.b = "ground.L2";
+  slot.width = 0.4;
+  slot.law.kind = ContactLaw::Kind::rigid;
+  o.contacts = {slot};
+  const Image im = render_frame(m, single_configuration(m.q0), 0, o);
+  for (const auto& [x, y] : {std::pair{0.0, -0.4}, std::pair{0.5, -0.8}, std::pair{-0.9, -0.6}})
+    EXPECT_NE(contact_pixel(im, x, y), kContactPaper) << x << ", " << y;
+  for (const auto& [x, y] : {std::pair{0.0, -0.6}, std::pair{0.3, -0.5}, std::pair{0.3, -0.7},
+                             std::pair{-0.8, -0.6}, std::pair{0.92, -0.6}})
+    EXPECT_EQ(contact_pixel(im, x, y), kContactPaper) << x << ", " << y;
 }
 
 TEST(ContactRender, AContactWithAnUnknownPointIsNamed) {
