@@ -32,9 +32,9 @@ std::vector<std::string> cells(const std::string& line) {
   }
 }
 
-std::string unquote(std::string s) {
-  if (s.size() >= 2 && s.front() == '"' && s.back() == '"') return s.substr(1, s.size() - 2);
-  return s;
+std::string unquote(std::string_view s) {
+  if (s.size() >= 2 && s.front() == '"' && s.back() == '"') s = s.substr(1, s.size() - 2);
+  return std::string(s);
 }
 
 struct Reading {
@@ -130,7 +130,7 @@ LookupTable read_table_csv(const std::string& path, std::string name, const CsvC
         r.fail(line,
                "the first row holds numbers: a header row of column names is expected "
                "before the data (e.g. 'angle, lift')");
-      for (auto& c : row) header.push_back(unquote(std::move(c)));
+      for (const auto& c : row) header.push_back(unquote(c));
       ix = column(r, header, columns.x, 0, line);
       iy = column(r, header, columns.y, 1, line);
       continue;
