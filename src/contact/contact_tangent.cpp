@@ -20,6 +20,8 @@ int tangent_kind(const ContactDef& c) {
       return 1;
     case ContactDef::Target::hole:
       break;
+    case ContactDef::Target::slot:  // friction in a slot is refused (check_slot)
+      throw Error("contact '" + c.name + "': a slot has no tangent (friction in a slot)", c.name);
   }
   return -1;
 }
