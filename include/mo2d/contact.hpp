@@ -65,6 +65,7 @@ struct ContactDef {
   std::string a{}, b{};
   double target_radius = 0;
   double width = 0;  // slot: its width (m)
+  // its law: rigid or compliant, restitution, friction (ContactLaw)
   ContactLaw law{};
 };
 

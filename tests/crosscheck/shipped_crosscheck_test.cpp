@@ -28,6 +28,7 @@ const char* const kAllowedRefusals[] = {"user position constraint",
                                         "quasi-steady state",
                                         "reduced to a constraint is not translated",
                                         "a pin in a hole",
+                                        "a pin in a slot",
                                         "Coulomb friction ("};
 
 struct SceneOutcome {
