@@ -53,6 +53,7 @@ int view(const ViewCliOptions& o) {
   ViewerOptions v;
   v.frame.width = o.width;
   v.frame.height = o.height;
+  v.frame.contacts = scene.contacts;  // drawn as in mo2d render's frames
   v.max_frames = o.max_frames;
   v.columns = o.columns;
   const std::string path = o.out.empty() ? output_path(o.scene, scene, "view.html") : o.out;

@@ -1,5 +1,6 @@
 // The numbers of a frame's drawing (mo2d/render/drawing.hpp): the same plan and the same
-// geometry as the Painter of frame.cpp (body hulls, pins, blocks, rails, slots, centres of mass).
+// geometry as the Painter of frame.cpp (body hulls, pins, blocks, rails, slots, centres of mass)
+// and render/contacts.cpp (the contacts).
 #include "mo2d/render/drawing.hpp"
 
 #include <algorithm>
@@ -21,6 +22,38 @@ const char* kind_name(detail::JointKind k) {
       return "slot";
   }
   return "revolute";
+}
+
+const char* target_name(ContactDef::Target t) {
+  switch (t) {
+    case ContactDef::Target::line:
+      return "line";
+    case ContactDef::Target::circle:
+      return "circle";
+    case ContactDef::Target::hole:
+      return "hole";
+    case ContactDef::Target::slot:
+      return "slot";
+  }
+  return "line";
+}
+
+// The contacts' static part (the per-sample points: drawn_sample).
+std::vector<DrawnContact> drawn_contacts(const detail::FramePlan& p) {
+  std::vector<DrawnContact> out;
+  const double scale = p.view.scale;
+  for (size_t c = 0; c < p.options.contacts.size(); ++c) {
+    const ContactDef& def = p.options.contacts[c];
+    out.push_back(
+        {.name = def.name,
+         .target = target_name(def.target),
+         .point_body = p.contact_bodies[c].first,
+         .target_body = p.contact_bodies[c].second,
+         .radius = std::max(def.radius * scale, p.P * 0.6 * p.options.style.joint_radius),
+         .target_radius = def.target_radius * scale,
+         .half_width = def.target == ContactDef::Target::slot ? def.width / 2 * scale : 0.0});
+  }
+  return out;
 }
 
 DrawnSample drawn_sample(const detail::FramePlan& p, const Drawing& d, int k) {
@@ -53,6 +86,10 @@ DrawnSample drawn_sample(const detail::FramePlan& p, const Drawing& d, int k) {
     s.rails.emplace_back(a + (p.range[j].first * p.view.scale - pad) * e,
                          a + (p.range[j].second * p.view.scale + pad) * e);
   }
+  if (!p.contacts.empty())
+    for (const detail::FramePlan::ContactAt& c : p.contacts[static_cast<size_t>(k)])
+      s.contacts.push_back(
+          {Vec2(to_pixel(p.view, c.p)), Vec2(to_pixel(p.view, c.a)), Vec2(to_pixel(p.view, c.b))});
   return s;
 }
 
@@ -88,6 +125,7 @@ Drawing drawing_of(const Model& model, const Motion& motion, const FrameOptions&
          .body2 = jp.body2,
          .ground_pivot = jp.kind == detail::JointKind::revolute && (jp.body1 < 0 || jp.body2 < 0),
          .pin = jp.kind != detail::JointKind::prismatic});
+  d.contacts = drawn_contacts(p);
   for (int k : samples) {
     detail::check_sample(motion, k);
     d.samples.push_back(drawn_sample(p, d, k));

@@ -138,12 +138,22 @@ std::string geometry_json(const Drawing& d) {
          ",\"b1\":" + std::to_string(J.body1) + ",\"b2\":" + std::to_string(J.body2) +
          ",\"pivot\":" + (J.ground_pivot ? "1" : "0") + "}";
   }
+  o += "],\"contacts\":[";
+  for (size_t c = 0; c < d.contacts.size(); ++c) {
+    const DrawnContact& C = d.contacts[c];
+    if (c) o += ',';
+    o += std::string("{\"name\":") + quoted(C.name) + ",\"target\":" + quoted(C.target) +
+         ",\"pb\":" + std::to_string(C.point_body) + ",\"tb\":" + std::to_string(C.target_body) +
+         ",\"r\":" + number(C.radius) + ",\"R\":" + number(C.target_radius) +
+         ",\"hw\":" + number(C.half_width) + "}";
+  }
   o += "],\"t\":[";
   for (size_t f = 0; f < d.samples.size(); ++f) {
     if (f) o += ',';
     o += number(d.samples[f].time, 10);
   }
-  // per frame: hulls (per body), joints, coms; rails and axes of the joints that are not revolute
+  // per frame: hulls (per body), joints, coms; rails and axes of the joints that are not
+  // revolute; each contact's point p and target points a, b
   o += "],\"frames\":[";
   for (size_t f = 0; f < d.samples.size(); ++f) {
     const DrawnSample& s = d.samples[f];
@@ -162,6 +172,11 @@ std::string geometry_json(const Drawing& d) {
         rails.insert(rails.end(), {s.rails[j].first, s.rails[j].second, s.axes[j]});
     o += ",\"R\":";
     points(o, rails);
+    std::vector<Vec2> contacts;  // per contact: p, a, b
+    for (const std::array<Vec2, 3>& c : s.contacts)
+      contacts.insert(contacts.end(), c.begin(), c.end());
+    o += ",\"K\":";
+    points(o, contacts);
     o += '}';
   }
   return o + "]";

@@ -14,9 +14,10 @@ namespace mo2d::py_bind {
 
 namespace {
 
-ViewerOptions viewer_options(int max_frames, const std::vector<std::string>& columns, int width,
-                             int height) {
+ViewerOptions viewer_options(const Result& r, int max_frames,
+                             const std::vector<std::string>& columns, int width, int height) {
   ViewerOptions o;
+  o.frame.contacts = r.scene_contacts;  // a scene's contacts, drawn as in its frames
   o.max_frames = max_frames;
   o.columns = columns;
   o.frame.width = width;
@@ -96,7 +97,7 @@ void bind_view(py::module_& m) {
           [](const Result& r, int max_frames, const std::vector<std::string>& columns, int width,
              int height) {
             return viewer_page(*r.model, r.trajectory,
-                               viewer_options(max_frames, columns, width, height))
+                               viewer_options(r, max_frames, columns, width, height))
                 .html;
           },
           py::arg("max_frames") = 400, py::arg("columns") = std::vector<std::string>{},
@@ -111,7 +112,7 @@ void bind_view(py::module_& m) {
           [](const Result& r, const std::string& path, int max_frames,
              const std::vector<std::string>& columns, int width, int height) {
             write_viewer_page(*r.model, r.trajectory,
-                              viewer_options(max_frames, columns, width, height), path);
+                              viewer_options(r, max_frames, columns, width, height), path);
           },
           py::arg("path"), py::arg("max_frames") = 400,
           py::arg("columns") = std::vector<std::string>{}, py::arg("width") = 800,
@@ -144,7 +145,7 @@ void bind_view(py::module_& m) {
       .def(
           "_repr_html_",
           [](const Result& r) {
-            const ViewerOptions o = viewer_options(400, {}, 800, 600);
+            const ViewerOptions o = viewer_options(r, 400, {}, 800, 600);
             return iframe(viewer_page(*r.model, r.trajectory, o).html, o.frame.width,
                           o.frame.height);
           },

@@ -81,6 +81,36 @@ TEST_P(DrawingMatchesFrame, PinsAreWhereTheCairoFrameDrawsThem) {
 INSTANTIATE_TEST_SUITE_P(Scenes, DrawingMatchesFrame,
                          testing::Values("slider_crank", "rrr3", "whitworth"));
 
+// The contacts' numbers (DrawnContact, DrawnSample::contacts) where the Cairo frame draws them:
+// the bouncing ball's circle around ball.C at the view's pixel of ball.C with the radius r times
+// the view's scale, its floor's ends at ground.L and ground.R; at a second sample, lower.
+TEST(Drawing, ContactsAreAtTheirPointsInPixels) {
+  const Scene scene = load_scene(std::string(MO2D_MECHANISMS_DIR) + "/bouncing_ball.yaml");
+  const Model model = build_scene_model(scene);
+  Motion motion = single_configuration(model.q0);
+  FrameOptions options;
+  options.contacts = scene.contacts;
+  const Drawing d = drawing_of(model, motion, options, {0});
+  ASSERT_EQ(d.contacts.size(), 1u);
+  EXPECT_EQ(d.contacts[0].name, "floor");
+  EXPECT_EQ(d.contacts[0].target, "line");
+  EXPECT_EQ(d.contacts[0].target_body, -1);
+  EXPECT_NEAR(d.contacts[0].radius, 0.05 * d.view.scale, 1e-9);
+  const auto& k = d.samples[0].contacts.at(0);
+  const Vec2 ball(model.q0[model.coordinate("ball.C.x")], model.q0[model.coordinate("ball.C.y")]);
+  for (const auto& [drawn, world] :
+       {std::pair{k[0], ball}, std::pair{k[1], Vec2(-1, 0)}, std::pair{k[2], Vec2(1, 0)}})
+    EXPECT_LT((drawn - Vec2(to_pixel(d.view, world))).norm(), 1e-9) << world.transpose();
+  // the ball's ring on the Cairo frame of the same sample (a planted offset of 5 px fails)
+  const Image im = render_frame(model, motion, 0, options);
+  int dark = 0;
+  for (int a = 0; a < 16; ++a) {
+    const double t = a * M_PI / 8, r = d.contacts[0].radius;
+    dark += luma(im, k[0].x() + r * std::cos(t), k[0].y() + r * std::sin(t)) < 200;
+  }
+  EXPECT_GE(dark, 12);
+}
+
 TEST(Drawing, FrameSvgIsTheFrameAsSvgText) {
   const Scene scene = load_scene(std::string(MO2D_MECHANISMS_DIR) + "/slider_crank.yaml");
   const Model model = build_scene_model(scene);

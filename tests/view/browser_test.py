@@ -14,7 +14,9 @@ Writes the page of SCENE (`mo2d view`) and the Cairo frames of the same run (`mo
     mo2dViewer.jointPositions() reports, BOTH the page's screenshot and the Cairo PNG of that
     time must show a pin (a light disc inside a dark ring of the style's joint radius): a drawing
     off by more than a pixel or two puts the ring across the centre or leaves a side of it empty;
-  - the same check after zooming the page 2x about its centre (ring radius doubled);
+  - a contact's circle around its point (and a circle's or a hole's target) that is not drawn
+    where mo2dViewer.contactPositions() says, in its colour, on both the page and the Cairo frame;
+  - the same pin check after zooming the page 2x about its centre (ring radius doubled);
   - playback that does not advance, a click panel (select) without the joint's values.
 Exits 77 (ctest SKIP_RETURN_CODE) with a message when chromium is not installed.
 """
@@ -110,6 +112,33 @@ def pin_at(img, cx, cy, radius):
     for k, d in enumerate(darkest):
         if d > 120:
             return False, "no ring at %g degrees (darkest luma %.0f)" % (22.5 * k, d)
+    return True, ""
+
+
+def pixel(img, x, y):
+    x, y = math.floor(x), math.floor(y)
+    if not (0 <= x < img["w"] and 0 <= y < img["h"]):
+        return (255, 255, 255)
+    r, i = png_row(img, y), x * img["bpp"]
+    return (r[i], r[i + 1], r[i + 2])
+
+
+def ring_at(img, cx, cy, radius, ink):
+    """A circle of `radius` around (cx, cy) stroked in `ink` (RGB 0-255): in at least 12 of 16
+    sectors a pixel centre within 1.2 px of the radius within 60 of the ink (other shapes drawn
+    later may cover a few sectors). Returns (ok, why)."""
+    found = [False] * 16
+    reach = int(radius + 3)
+    for j in range(math.floor(cy) - reach, math.floor(cy) + reach + 1):
+        for i in range(math.floor(cx) - reach, math.floor(cx) + reach + 1):
+            dx, dy = i + 0.5 - cx, j + 0.5 - cy
+            if abs(math.hypot(dx, dy) - radius) <= 1.2:
+                k = int(((math.atan2(dy, dx) + math.pi / 16) % (2 * math.pi)) / (math.pi / 8)) % 16
+                c = pixel(img, i, j)
+                if max(abs(c[n] - ink[n]) for n in range(3)) <= 60:
+                    found[k] = True
+    if sum(found) < 12:
+        return False, "the ink %s in %d of 16 sectors" % (ink, sum(found))
     return True, ""
 
 
@@ -294,6 +323,21 @@ def main():
                              (t, j["name"], j["x"], j["y"], what, why,
                               best_offset(img, j["x"], j["y"], radius)))
                 checked += 1
+            for c in js("mo2dViewer.contactPositions()"):
+                rings = [("circle around '%s'" % c["name"], c["x"], c["y"], c["r"], c["ink"])]
+                if c["target"] in ("circle", "hole"):
+                    rings.append(("target of '%s'" % c["name"], c["ax"], c["ay"], c["R"],
+                                  c["target_ink"]))
+                for what_ring, x, y, r, ink in rings:
+                    if r > 150:
+                        continue
+                    shot = screenshot_around(rect, x, y, int(r + 5))
+                    for what, img in (("page", shot), ("Cairo frame", cairo)):
+                        ok, why = ring_at(img, x, y, r, ink)
+                        if not ok:
+                            fail("t = %g s, the %s at page pixel (%.2f, %.2f), radius %.2f: the "
+                                 "%s has no such ring: %s" % (t, what_ring, x, y, r, what, why))
+                    checked += 1
         # zoomed 2x about the centre: the pins move and grow with the zoom
         js("mo2dViewer.setZoom(2)")
         for j in js("mo2dViewer.jointPositions()"):
