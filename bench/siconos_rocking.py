@@ -3,6 +3,7 @@
 time-stepping against Housner's closed form (scripts/rocking_block.py) and mo2d's events.
 
     /usr/bin/python3 bench/siconos_rocking.py [MO2D]   # MO2D: the mo2d command (build/mo2d)
+    /usr/bin/python3 bench/siconos_rocking.py once none|H [THETA]   # one run, for callgrind
 
 Debian's interpreter: python3-siconos installs into its dist-packages; without it the script says
 "Siconos not installed (python3-siconos): skipped" and exits 0. It compiles
@@ -170,19 +171,33 @@ def median_cpu(f):
     return statistics.median(times)
 
 
-def mo2d_row(mo2d, exact):
-    """mo2d's impacts from `mo2d forward mechanisms/rocking_block.yaml` and the run's CPU seconds
-    (its JSON summary)."""
+def mo2d_run(mo2d, rtol):
+    """mo2d's impacts from `mo2d forward mechanisms/rocking_block.yaml --rtol RTOL --atol
+    RTOL/100` and the run's CPU seconds (its JSON summary's cpu_seconds: the run, not the
+    command's start-up and output)."""
     with tempfile.TemporaryDirectory() as out:
-        subprocess.run([mo2d, "forward", str(SCENE), "--out", out], capture_output=True,
-                       check=True)
+        subprocess.run([mo2d, "forward", str(SCENE), "--rtol", f"{rtol:g}", "--atol",
+                        f"{rtol / 100:g}", "--out", out], capture_output=True, check=True)
         summary = json.loads(next(pathlib.Path(out).glob("*.json")).read_text())
     hits = [(e["t"], e["speed"], e["contact"]) for e in summary["contacts"]["events"]
             if e["kind"] == "impact"]
     return hits, summary["cpu_seconds"]
 
 
+def once(h, theta):
+    """One run, for callgrind (`once none`: the imports, the plugin's compilation (cc is a child
+    process: not counted without --trace-children) and the parameters, subtracted)."""
+    p = scene_parameters()
+    with tempfile.TemporaryDirectory() as folder:
+        plugin = build_plugin(folder)
+        if h != "none":
+            print(len(rocking(p, plugin, float(h), float(theta))), "impacts")
+    return 0
+
+
 def main(argv):
+    if argv and argv[0] == "once":
+        return once(*(argv[1:] + ["0.5"])[:2]) if len(argv) > 1 else once("none", 0)
     p = scene_parameters()
     exact = housner.housner(IMPACTS)
     print(f"load average {os.getloadavg()[0]:.1f} on {os.cpu_count()} cores; Housner: first "
@@ -191,10 +206,14 @@ def main(argv):
           "(m/s) | ratio error max | CPU per run (ms) |\n|---|---|---|---|---|---|---|")
     mo2d = argv[0] if argv else str(ROOT / "build" / "mo2d")
     if os.access(mo2d, os.X_OK):
-        hits, cpu = mo2d_row(mo2d, exact)
-        found, dt, dv, dr = errors(hits, exact)
-        print(f"| mo2d (events) | dopri5 rtol 1e-10 (the scene's) | {len(hits)} | {dt:.2e} | "
-              f"{dv:.2e} | {dr:.2e} | {1e3 * cpu:.3g} (one run: its JSON's cpu_seconds) |")
+        for rtol in (1e-10, 1e-8, 1e-6):
+            runs = [mo2d_run(mo2d, rtol) for _ in range(3)]
+            hits = runs[0][0]
+            found, dt, dv, dr = errors(hits, exact)
+            cpu = statistics.median(cpu for _, cpu in runs)
+            print(f"| mo2d (events) | dopri5 rtol {rtol:g}, atol {rtol / 100:g} | {len(hits)} | "
+                  f"{dt:.2e} | {dv:.2e} | {dr:.2e} | {1e3 * cpu:.3g} (cpu_seconds, median of 3) |",
+                  flush=True)
     with tempfile.TemporaryDirectory() as folder:
         plugin = build_plugin(folder)
         solvers = {"NSGS (default)": None, "Lemke": sn.SICONOS_FRICTION_2D_LEMKE,
