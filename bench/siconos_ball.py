@@ -3,7 +3,7 @@
 peer beside mo2d's events, its compliant law and Box2D (`build/bench/mo2d_contact_study speed`),
 against the same closed form over the same horizon (10 impacts, 3.54 s).
 
-    /usr/bin/python3 bench/siconos_ball.py [table]      # the sweep and the table (~1 min)
+    /usr/bin/python3 bench/siconos_ball.py [table]      # the sweep and the table (~30 s)
     /usr/bin/python3 bench/siconos_ball.py check        # the short check of ctest (peers label)
     /usr/bin/python3 bench/siconos_ball.py once|twice KIND ... # for callgrind (once_run below)
 
