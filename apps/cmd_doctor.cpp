@@ -221,6 +221,20 @@ void check_development() {
            ? "found"
            : "sudo apt-get install libmujoco-dev, cmake -DMO2D_BUILD_BENCH=ON, " +
                  std::string(kReconfigure));
+  // Siconos: a benchmark peer driven from Debian's python3 (bench/siconos_ball.py); found, not
+  // imported (importing it costs 0.2 s)
+  const std::string debian_python =
+      fs::exists("/usr/bin/python3") ? "/usr/bin/python3" : std::string("python3");
+  const std::string find =
+      "import importlib.util, sys; sys.exit(importlib.util.find_spec('siconos') is None)";
+  std::fflush(stdout);
+  const bool siconos =
+      std::system(
+          (shell_quote(debian_python) + " -c " + shell_quote(find) + " >/dev/null 2>&1").c_str()) ==
+      0;
+  line(siconos, "Siconos (the benchmark peer bench/siconos_ball.py, docs/contact.md)",
+       siconos ? debian_python + " finds python3-siconos"
+               : "sudo apt-get install python3-siconos (optional: a benchmark peer only)");
   const std::vector<std::vector<std::string>> tools = {
       {"doxygen", "doxygen (the API reference, target mo2d_docs; test docs.api)", "doxygen"},
       {"clang-format", "clang-format (scripts/check-style.sh)", "clang-format"},

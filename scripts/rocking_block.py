@@ -44,15 +44,28 @@ def quarter(tm):
     return total
 
 
-events = json.load(open(sys.argv[1]))["contacts"]["events"]
-hits = [e for e in events if e["kind"] == "impact"]
-t, w = quarter(theta0), math.sqrt(2 * p2 * (math.cos(alpha - theta0) - math.cos(alpha)))
-dt = dv = dr = 0.0
-for k, e in enumerate(hits):
-    dt, dv = max(dt, abs(e["t"] - t)), max(dv, abs(e["speed"] - 2 * b * w))
-    if k:
-        dr = max(dr, abs(e["speed"] / hits[k - 1]["speed"] - r))
-    w *= r
-    t += 2 * quarter(alpha - math.acos(math.cos(alpha) + w * w / (2 * p2)))
-print(f"{len(hits)} impacts: times within {dt:.2g} s, landing speeds within {dv:.2g} m/s, "
-      f"ratios within {dr:.2g} of r = {r}")
+def housner(count):
+    """The first `count` impacts of Housner's closed form: (time, landing speed 2 b |omega|)."""
+    t, w = quarter(theta0), math.sqrt(2 * p2 * (math.cos(alpha - theta0) - math.cos(alpha)))
+    out = []
+    for _ in range(count):
+        out.append((t, 2 * b * w))
+        w *= r
+        t += 2 * quarter(alpha - math.acos(math.cos(alpha) + w * w / (2 * p2)))
+    return out
+
+
+def main(path):
+    events = json.load(open(path))["contacts"]["events"]
+    hits = [e for e in events if e["kind"] == "impact"]
+    dt = dv = dr = 0.0
+    for k, (e, (t, v)) in enumerate(zip(hits, housner(len(hits)))):
+        dt, dv = max(dt, abs(e["t"] - t)), max(dv, abs(e["speed"] - v))
+        if k:
+            dr = max(dr, abs(e["speed"] / hits[k - 1]["speed"] - r))
+    print(f"{len(hits)} impacts: times within {dt:.2g} s, landing speeds within {dv:.2g} m/s, "
+          f"ratios within {dr:.2g} of r = {r}")
+
+
+if __name__ == "__main__":
+    main(sys.argv[1])
