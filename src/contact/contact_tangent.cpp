@@ -20,6 +20,10 @@ int tangent_kind(const ContactDef& c) {
       return 1;
     case ContactDef::Target::hole:
       break;
+    case ContactDef::Target::profile:
+      throw Error("contact '" + c.name +
+                      "': the tangent of a cam profile is not implemented (no friction on it)",
+                  c.name);
   }
   return -1;
 }

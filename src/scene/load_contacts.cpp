@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "contact/profile.hpp"
 #include "load_system.hpp"
 #include "model/suggest.hpp"
 
@@ -37,22 +38,63 @@ double positive(const Reader& r, const YAML::Node& n, const std::string& what) {
   return v;
 }
 
-// line: [a, b] | circle: c | hole: c, with target_radius for a circle or a hole.
+// profile: [centre, axis point] with table: the scene's table r(phi) (docs/scene-format.md).
+void read_profile(const Reader& r, const YAML::Node& value, const std::string& what,
+                  const SystemInfo& info, ContactDef& c) {
+  const YAML::Node t = value["profile"];
+  const std::string key = what + ".profile";
+  if (!t.IsSequence() || t.size() != 2)
+    r.fail(t, key + ": expected two points [centre, axis] (phi = 0 along centre -> axis)");
+  c.target = ContactDef::Target::profile;
+  c.a = point_of(r, t[0], key, info);
+  c.b = point_of(r, t[1], key, info);
+  if (c.a == c.b)
+    r.fail(t[1], key + ": the centre and the axis point are the same ('" + c.a + "')");
+  const YAML::Node table = r.required(value, "table", what);
+  const std::string name = r.string(table, what + ".table");
+  std::vector<std::string> names;
+  for (const auto& [n, tab] : r.tables) {
+    names.push_back(n);
+    if (n == name) c.profile = tab;
+  }
+  if (!c.profile)
+    r.fail(table, what + ".table: no table '" + name + "' in the scene's tables" +
+                      did_you_mean(name, names));
+  if (value["friction"].IsDefined())
+    r.fail(value["friction"], what +
+                                  ".friction: not supported on a cam profile (its tangent is "
+                                  "not implemented)");
+  const std::string problem = detail::profile_problem(*c.profile, c.radius);
+  if (!problem.empty()) r.fail(table, what + ": " + problem);
+}
+
+// line: [a, b] | circle: c | hole: c | profile: [a, b], with target_radius for a circle or a
+// hole, table for a profile.
 void read_target(const Reader& r, const YAML::Node& value, const std::string& what,
                  const SystemInfo& info, ContactDef& c) {
-  const char* kinds[] = {"line", "circle", "hole"};
+  const char* kinds[] = {"line", "circle", "hole", "profile"};
   const char* given = nullptr;
   for (const char* k : kinds) {
     if (!value[k].IsDefined()) continue;
     if (given)
-      r.fail(value[k], what + ": give one target, 'line', 'circle' or 'hole' (both '" + given +
-                           "' and '" + k + "' given)");
+      r.fail(value[k], what + ": give one target, 'line', 'circle', 'hole' or 'profile' (both '" +
+                           given + "' and '" + k + "' given)");
     given = k;
   }
-  if (!given) r.fail(value, what + ": no target: give 'line: [A, B]', 'circle: C' or 'hole: C'");
+  if (!given)
+    r.fail(value, what +
+                      ": no target: give 'line: [A, B]', 'circle: C', 'hole: C' or 'profile: "
+                      "[C, A]'");
   const YAML::Node t = value[given];
   const std::string key = what + "." + given;
   const YAML::Node radius = value["target_radius"];
+  if (std::string(given) != "profile" && value["table"].IsDefined())
+    r.fail(value["table"], what + ".table: only for a profile");
+  if (std::string(given) == "profile") {
+    if (radius.IsDefined()) r.fail(radius, what + ".target_radius: only for a circle or a hole");
+    read_profile(r, value, what, info, c);
+    return;
+  }
   if (std::string(given) == "line") {
     if (!t.IsSequence() || t.size() != 2)
       r.fail(t, key + ": expected two points [A, B] (the free side is the left of A -> B)");
@@ -106,8 +148,8 @@ void read_contacts(const Reader& r, const YAML::Node& node, SystemInfo& info, Sc
     check_element_name(r, key, "contact");
     const std::string what = "contact '" + key.Scalar() + "'";
     r.check_keys(value,
-                 {"point", "radius", "line", "circle", "hole", "target_radius", "law",
-                  "restitution", "stiffness", "exponent", "min_approach_speed", "friction"},
+                 {"point", "radius", "line", "circle", "hole", "profile", "table", "target_radius",
+                  "law", "restitution", "stiffness", "exponent", "min_approach_speed", "friction"},
                  what);
     for (const ContactDef& c : scene.contacts)
       if (c.name == key.Scalar()) r.fail(key, what + ": defined twice");
