@@ -8,6 +8,7 @@
 #include <memory>
 #include <numbers>
 #include <string>
+#include <tuple>
 #include <vector>
 
 #include "mo2d/scene.hpp"
@@ -363,6 +364,61 @@ TEST(CamProfile, EccentricTableAgreesWithTheCircleTarget) {
   }
 }
 
+namespace {
+
+// Metamorphic (as ContactMetamorphic.*): cam_profile.yaml in a frame rotated by a and translated
+// by (dx, dy) (every point p -> R(a) p + d, gravity R(a) g, the drive's angle offset by a) runs
+// with the same events: kinds, times, speeds and impulses. At omega = 70 rad/s: lift-offs and
+// impacts.
+std::string cam_in_frame(double a, double dx, double dy, const std::string& rtol = "1e-10") {
+  auto at = [](const std::string& x, const std::string& y) {
+    return "[dx + (" + x + ") * cos(a) - (" + y + ") * sin(a), dy + (" + x + ") * sin(a) + (" + y +
+           ") * cos(a)]";
+  };
+  return "name: cam_frame\n"
+         "parameters: {omega: 70, base: 0.04, m: 0.5, k: 2000, P0: 10, H: 0.2, e: 0.3, g: 9.81, "
+         "a: " +
+         std::to_string(a) + ", dx: " + std::to_string(dx) + ", dy: " + std::to_string(dy) +
+         "}\n"
+         "tables:\n"
+         "  profile: {file: " MO2D_MECHANISMS_DIR
+         "/cam_profile.csv, x: angle_deg, y: radius_mm, "
+         "scale_x: pi / 180, scale_y: 1e-3, extrapolate: periodic}\n"
+         "ground: {O: " +
+         at("0", "0") + ", G1: " + at("0", "0.1") + ", G2: " + at("0", "0.2") +
+         "}\n"
+         "bodies:\n"
+         "  cam: {nodes: {O: " +
+         at("0", "0") + ", A: " + at("-0.015", "0.015 * sqrt(3)") +
+         "}, mass: 1.0, inertia: 1e-3, com: O}\n"
+         "  follower: {nodes: {P: " +
+         at("0", "base") +
+         "}, mass: m}\n"
+         "joints:\n"
+         "  cam_shaft: {type: revolute, node_a: ground.O, node_b: cam.O}\n"
+         "  guide: {type: prismatic, axis_from: ground.G1, axis_to: ground.G2, slider: "
+         "follower.P}\n"
+         "coordinates:\n"
+         "  cam.angle: {rate: {cam.w: 1}}\n"
+         "constraints:\n"
+         "  drive: {psi: cam.angle - 2 * pi / 3 - a + omega * t}\n"
+         "loads:\n"
+         "  gravity: [g * sin(a), -g * cos(a)]\n"
+         "  springs:\n"
+         "    return: {body_a: ground, point_a: " +
+         at("0", "H") + ", body_b: follower, point_b: " + at("0", "base") +
+         ", rest_length: H - base + P0 / k, stiffness: k}\n"
+         "contacts:\n"
+         "  cam: {point: follower.P, profile: [cam.O, cam.A], table: profile, law: rigid, "
+         "restitution: e}\n"
+         "initial: {velocities: {follower.P.vy: 0}}\n"
+         "run: {solve: forward, duration: 2 * pi / omega, samples: 101, integrator: dopri5, "
+         "rtol: " +
+         rtol + ", atol: 1e-12}\n";
+}
+
+}  // namespace
+
 // At a low speed the follower stays on the cam and its height is the table's law,
 // y = base + s(phi0 + omega t) (phi0 = 330 deg) with s read from cam_lift.csv (the same spline up
 // to round-off).
@@ -404,6 +460,38 @@ TEST(CamProfile, LiftOffSpeedSeparatesStayingOnFromLiftingOff) {
       EXPECT_NEAR(N, 0, 1e-6 * (m * g + P0)) << "the closed form's force at the lift-off";
       break;
     }
+}
+
+TEST(CamProfile, EventsFollowRotationAndTranslation) {
+  const SceneRun ref = run_scene(parse_scene(cam_in_frame(0, 0, 0), "cam_frame.yaml"));
+  ASSERT_GE(count(ref, ContactEvent::Kind::lift_off), 1);
+  ASSERT_GE(count(ref, ContactEvent::Kind::impact), 1);
+  // the integration's own error is not invariant under the map (its step sequence changes): the
+  // tolerances are 4 times the differences of the run given from the same run at rtol 1e-11
+  const SceneRun tight = run_scene(parse_scene(cam_in_frame(0, 0, 0, "1e-11"), "cam_frame.yaml"));
+  ASSERT_EQ(tight.events.size(), ref.events.size());
+  double dt = 1e-12, dv = 1e-12, dp = 1e-12;
+  for (size_t k = 0; k < ref.events.size(); ++k) {
+    dt = std::max(dt, 4 * std::abs(tight.events[k].t - ref.events[k].t));
+    dv = std::max(dv, 4 * std::abs(tight.events[k].speed - ref.events[k].speed));
+    dp = std::max(dp, 4 * std::abs(tight.events[k].impulse - ref.events[k].impulse));
+  }
+  std::printf("tolerances: t %.3g s, speed %.3g m/s, impulse %.3g N s\n", dt, dv, dp);
+  for (const auto& [a, dx, dy] : {std::tuple{0.7, 0.3, -1.2}, std::tuple{-0.6, -2.0, 0.5}}) {
+    // rtol weighs the coordinates' magnitudes, which the translation raises from 0.2 m to
+    // 0.2 m + |d|: scaled down by as much, so that both runs allow the same absolute error
+    const double scale = 0.2 / (0.2 + std::hypot(dx, dy));
+    char rtol[32];
+    std::snprintf(rtol, sizeof rtol, "%.6g", 1e-10 * scale);
+    const SceneRun run = run_scene(parse_scene(cam_in_frame(a, dx, dy, rtol), "cam_frame.yaml"));
+    ASSERT_EQ(run.events.size(), ref.events.size()) << "a " << a;
+    for (size_t k = 0; k < run.events.size(); ++k) {
+      EXPECT_EQ(run.events[k].kind, ref.events[k].kind) << "a " << a << " event " << k;
+      EXPECT_NEAR(run.events[k].t, ref.events[k].t, dt) << "a " << a << " event " << k;
+      EXPECT_NEAR(run.events[k].speed, ref.events[k].speed, dv) << "a " << a << " event " << k;
+      EXPECT_NEAR(run.events[k].impulse, ref.events[k].impulse, dp) << "event " << k;
+    }
+  }
 }
 
 }  // namespace mo2d
