@@ -96,6 +96,11 @@ void add_contact_shapes(const Model& m, Box2DWorld& w, const std::vector<Contact
       refuse_contact(c,
                      "a pin in a slot: its walls, closed end and lips (docs/contact.md, \"A pin "
                      "in a slot\") are not built as Box2D edges");
+    if (c.target == ContactDef::Target::profile)
+      refuse_contact(c, "a cam profile (table '" + c.profile->name() +
+                            "'): it is not built as a Box2D shape (a b2ChainShape loop of its "
+                            "spline would be a polygon, whose corners a knife-edge catches; "
+                            "docs/contact.md, \"Cam profiles\")");
     const int other = cc.a.body;
     if (cc.p.body == other) refuse_contact(c, "its point and its target are on the same body");
     if (joined(m, cc.p.body, other))

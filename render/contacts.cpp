@@ -8,6 +8,8 @@
 //  - a hole of radius R around a (the circle is inside it): its outline, hatched outside;
 //  - a slot of width w from its closed end a to its mouth b: its two walls (a -> b, w/2 to
 //    either side of the centre line) and its flat end across a, each hatched outside the slot.
+//  - a cam profile r(phi) around a (axis a -> b): the closed polyline of its spline at 360 angles,
+//    on its body.
 // The shapes are outlined in a dark shade of their body's colour (the ground's grey on the ground),
 // over the bodies, so a closed contact shows as two outlines that touch.
 #include <algorithm>
@@ -15,6 +17,7 @@
 
 #include "canvas.hpp"
 #include "contact/contact_set.hpp"
+#include "contact/profile.hpp"
 #include "dynamics/points.hpp"
 #include "plan.hpp"
 #include "symbols.hpp"
@@ -37,15 +40,21 @@ void plan_contacts(FramePlan& p, Eigen::AlignedBox2d& box) {
       FramePlan::ContactAt& a = p.contacts[k][c];
       a.p = point_state(m, cc.p, q0, q1).p;
       a.a = point_state(m, cc.a, q0, q1).p;
-      const bool two =
-          cc.def.target == ContactDef::Target::line || cc.def.target == ContactDef::Target::slot;
+      const bool two = cc.def.target == ContactDef::Target::line ||
+                       cc.def.target == ContactDef::Target::slot ||
+                       cc.def.target == ContactDef::Target::profile;
       a.b = two ? point_state(m, cc.b, q0, q1).p : a.a;
-      const double half = cc.def.target == ContactDef::Target::slot ? cc.def.width / 2 : 0.0;
-      const Vec2 r(cc.def.radius, cc.def.radius), R(cc.def.target_radius + half,
-                                                     cc.def.target_radius + half);
+      // the target's reach around a: a slot's half width, a profile's largest radius (a margin
+      // for the spline)
+      double reach = cc.def.target_radius;
+      if (cc.def.target == ContactDef::Target::slot) reach += cc.def.width / 2;
+      if (cc.def.target == ContactDef::Target::profile)
+        for (double y : cc.def.profile->y()) reach = std::max(reach, 1.05 * y);
+      const Vec2 r(cc.def.radius, cc.def.radius), R(reach, reach);
       box.extend(a.p - r), box.extend(a.p + r);
       box.extend(a.a - R), box.extend(a.a + R);
-      box.extend(a.b - R), box.extend(a.b + R);
+      const Vec2 W = cc.def.target == ContactDef::Target::slot ? R : Vec2(0, 0);  // its mouth
+      box.extend(a.b - W), box.extend(a.b + W);
     }
   }
   p.contact_bodies.clear();
@@ -56,6 +65,21 @@ namespace {
 
 Rgb shape_colour(const FrameStyle& s, int body) {
   return body < 0 ? s.ground : dark_shade(s.palette[static_cast<size_t>(body) % s.palette.size()]);
+}
+
+// The profile r around a (axis a -> b, world), as a closed polyline in pixels.
+void profile_outline(cairo_t* cr, const FramePlan& p, const LookupTable& r, const Vec2& a,
+                     const Vec2& b) {
+  cairo_new_path(cr);
+  for (int i = 0; i < 360; ++i) {
+    const Vec2 q = to_pixel(p.view, profile_point(r, a, b, 2 * kPi * i / 360));
+    if (i == 0)
+      cairo_move_to(cr, q.x(), q.y());
+    else
+      cairo_line_to(cr, q.x(), q.y());
+  }
+  cairo_close_path(cr);
+  cairo_stroke(cr);
 }
 
 void circle(cairo_t* cr, const Vec2& c, double r) {
@@ -114,6 +138,8 @@ void draw_contacts(cairo_t* cr, const FramePlan& p, int k) {
     } else if (def.target == ContactDef::Target::slot) {
       draw_slot(cr, pa, to_pixel(p.view, a.b), def.width / 2 * scale, depth,
                 shape_colour(s, target_body), P * s.line_width);
+    } else if (def.target == ContactDef::Target::profile) {
+      if (a.b != a.a) profile_outline(cr, p, *def.profile, a.a, a.b);
     } else if (def.target == ContactDef::Target::circle || def.target == ContactDef::Target::hole) {
       const double R = def.target_radius * scale;
       circle(cr, pa, R);

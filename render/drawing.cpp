@@ -34,6 +34,8 @@ const char* target_name(ContactDef::Target t) {
       return "hole";
     case ContactDef::Target::slot:
       return "slot";
+    case ContactDef::Target::profile:  // the page draws its point only (docs/viewer.md)
+      return "profile";
   }
   return "line";
 }

@@ -1,6 +1,7 @@
 #pragma once
 // Contact and impact (issue 35; docs/contact.md): unilateral contacts between a point or a circle
-// on a body and a line or a circle on another body or the ground, and forward dynamics with them.
+// on a body and a line, a circle or a cam profile on another body or the ground, and forward
+// dynamics with them.
 //
 // Each contact has a signed gap g(q0) (> 0 open, < 0 penetrating; src/contact/<kind>.hpp give it
 // with its gradient), its rate g' = J q1 and, along the motion, g'' = J a1 + (J' q1). Two laws:
@@ -15,11 +16,13 @@
 //    constraint g'' = 0 whose multiplier lambda is watched: it opens where lambda reaches 0.
 // Every change (an onset, an exit, an impact, a lift-off, a Zeno accumulation) is an event located
 // by the integrator's root finding (ForwardOptions::stop_when), so no step passes over it.
+#include <memory>
 #include <string>
 #include <vector>
 
 #include "mo2d/forward.hpp"
 #include "mo2d/model.hpp"
+#include "mo2d/table.hpp"
 #include "mo2d/trajectory.hpp"
 
 namespace mo2d {
@@ -60,11 +63,17 @@ struct ContactDef {
   // of `width` > 2 radius whose centre line runs from a (its closed end, a flat wall) to b (its
   // open mouth), a and b on one body or the ground (src/contact/slot.hpp; its two walls and its end
   // are three contacts named NAME.left, NAME.right, NAME.end; outside the slot the walls' ends,
-  // the lips, are point contacts and the pin enters through the mouth).
-  enum class Target { line, circle, hole, slot } target = Target::line;
+  // the lips, are point contacts and the pin enters through the mouth), or a closed cam profile
+  // (src/contact/profile.hpp): the curve r(phi) (u(phi) = cos phi e1 + sin phi e2) around a, with
+  // e1 = (b - a) / |b - a| (phi = 0 along a -> b) and e2 = z x e1, a and b on one body (or the
+  // ground), r the table `profile` (m against rad: a periodic cubic spline of period 2 pi,
+  // r > 0; a circle of radius > 0 must not be larger than the smallest radius of curvature of a
+  // concave part), touched from outside; frictionless.
+  enum class Target { line, circle, hole, slot, profile } target = Target::line;
   std::string a{}, b{};
   double target_radius = 0;
-  double width = 0;  // slot: its width (m)
+  double width = 0;                              // slot: its width (m)
+  std::shared_ptr<const LookupTable> profile{};  // the profile's r(phi) (Target::profile)
   // its law: rigid or compliant, restitution, friction (ContactLaw)
   ContactLaw law{};
 };

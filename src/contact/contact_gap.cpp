@@ -1,10 +1,11 @@
 // The contacts' points resolved against a Model and their gaps (the kinds: point_line.hpp,
-// circle_circle.hpp): the value, the rate, J' q1 and the gradient J.
+// circle_circle.hpp, profile.hpp): the value, the rate, J' q1 and the gradient J.
 #include <cmath>
 
 #include "contact/circle_circle.hpp"
 #include "contact/contact_set.hpp"
 #include "contact/point_line.hpp"
+#include "contact/profile.hpp"
 #include "contact/slot_set.hpp"
 #include "dynamics/points.hpp"
 #include "mo2d/error.hpp"
@@ -60,7 +61,7 @@ void check_law(const ContactDef& c) {
     check_slot(c);
     return;
   }
-  if (c.target != ContactDef::Target::line &&
+  if ((c.target == ContactDef::Target::circle || c.target == ContactDef::Target::hole) &&
       !(c.target_radius > 0 && std::isfinite(c.target_radius)))
     bad("a circle or hole needs target_radius > 0 (got " + fmt(c.target_radius) + ")");
   if (c.target == ContactDef::Target::hole && !(c.target_radius > c.radius))
@@ -72,6 +73,22 @@ Jet coordinate_jet(double p, double v) {
   return {p, v, 0.0};
 }
 
+// A profile's table (present and fit for the contact's radius), its axis on one body, no friction.
+void check_profile(const ContactDef& c, const CompiledContact& out) {
+  auto bad = [&](const std::string& what) {
+    throw Error("contact '" + c.name + "': " + what, c.name);
+  };
+  if (!c.profile) bad("a profile target needs its table (ContactDef::profile)");
+  const std::string problem = profile_problem(*c.profile, c.radius);
+  if (!problem.empty()) bad(problem);
+  if (out.a.body != out.b.body)
+    bad("its profile's centre '" + c.a + "' and axis point '" + c.b +
+        "' must be on one body (the cam's)");
+  if (c.law.friction > 0)
+    bad("friction on a cam profile is not supported (its tangent is not implemented): give "
+        "friction 0");
+}
+
 }  // namespace
 
 CompiledContact compile_contact(const Model& m, const ContactDef& c) {
@@ -79,10 +96,18 @@ CompiledContact compile_contact(const Model& m, const ContactDef& c) {
   CompiledContact out;
   out.def = c;
   out.p = resolve(m, c, c.point, "point");
-  const bool two = c.target == ContactDef::Target::line || c.target == ContactDef::Target::slot;
-  out.a = resolve(m, c, c.a, two ? "point a" : "centre a");
-  if (two) out.b = resolve(m, c, c.b, "point b");
+  const bool two = c.target == ContactDef::Target::line || c.target == ContactDef::Target::slot ||
+                   c.target == ContactDef::Target::profile;
+  const char* a_name = c.target == ContactDef::Target::line   ? "line point a"
+                       : c.target == ContactDef::Target::slot ? "point a"
+                                                              : "centre a";
+  const char* b_name = c.target == ContactDef::Target::line   ? "line point b"
+                       : c.target == ContactDef::Target::slot ? "point b"
+                                                              : "profile axis point b";
+  out.a = resolve(m, c, c.a, a_name);
+  if (two) out.b = resolve(m, c, c.b, b_name);
   if (c.target == ContactDef::Target::slot) check_slot_points(m, out);
+  if (c.target == ContactDef::Target::profile) check_profile(c, out);
   if (out.p.body >= 0 && (out.p.body == out.a.body || (two && out.p.body == out.b.body)))
     throw Error("contact '" + c.name + "': its point and what it touches are on the same body",
                 c.name);
@@ -121,7 +146,16 @@ void gap_into(const Model& m, const CompiledContact& c, const Eigen::Ref<const E
     return;
   }
   Jet g;
-  if (c.def.target == ContactDef::Target::line) {
+  if (c.def.target == ContactDef::Target::profile) {
+    const PointState B = point_state(m, c.b, q0, q1);
+    ProfileFoot foot;
+    g = profile_gap(*c.def.profile, px, py, ax, ay, coordinate_jet(B.p.x(), B.v.x()),
+                    coordinate_jet(B.p.y(), B.v.y()), c.def.radius, c.phi, c.def.name, &foot);
+    const ProfileGradient d = profile_gradient(foot, A.p, B.p);
+    add_point_gradient(m, c.p, d.dP, out.J);
+    add_point_gradient(m, c.a, d.dA, out.J);
+    add_point_gradient(m, c.b, d.dB, out.J);
+  } else if (c.def.target == ContactDef::Target::line) {
     const PointState B = point_state(m, c.b, q0, q1);
     if (!((B.p - A.p).norm() > 0))
       throw Error("contact '" + c.def.name + "': its line has zero length (a = b)", c.def.name);
@@ -158,6 +192,12 @@ double gap_only(const Model& m, const CompiledContact& c,
   };
   if (c.def.target == ContactDef::Target::slot) return slot_gap_only(m, c, q0);
   const Vec2 P = at(c.p), A = at(c.a);
+  if (c.def.target == ContactDef::Target::profile) {
+    const Vec2 B = at(c.b);
+    return profile_gap(*c.def.profile, Jet(P.x()), Jet(P.y()), Jet(A.x()), Jet(A.y()), Jet(B.x()),
+                       Jet(B.y()), c.def.radius, c.phi, c.def.name)
+        .v;
+  }
   if (c.def.target == ContactDef::Target::line) {
     const Vec2 B = at(c.b);
     return point_line_gap(P.x(), P.y(), A.x(), A.y(), B.x(), B.y(), c.def.radius);

@@ -4,9 +4,9 @@
 // The constraint is a user position constraint of the System (constraints/user.hpp), its
 // arguments the coordinates of the nodes its points are made of: a body point is linear in its
 // two nodes (Example 2.6 (b); dynamics/points.hpp, combine_point), so psi(x) is the gap of
-// point_line.hpp / circle_circle.hpp evaluated on Jets, and the constraint stage takes its
-// Jacobian A = -J, its rate and its J' q1 from those Jets exactly. With M a1 = f + B u - A^T
-// lambda, the contact's generalized force is lambda J^T: its multiplier is the normal force N,
+// point_line.hpp / circle_circle.hpp / profile.hpp evaluated on Jets, and the constraint stage
+// takes its Jacobian A = -J, its rate and its J' q1 from those Jets exactly. With M a1 = f + B u -
+// A^T lambda, the contact's generalized force is lambda J^T: its multiplier is the normal force N,
 // > 0 pushing the bodies apart.
 #include "mo2d/contact_inverse.hpp"
 
@@ -19,6 +19,7 @@
 #include "contact/contact_run.hpp"
 #include "contact/contact_set.hpp"
 #include "contact/point_line.hpp"
+#include "contact/profile.hpp"
 #include "mo2d/error.hpp"
 #include "run/format.hpp"
 
@@ -94,10 +95,17 @@ PositionConstraintDef gap_constraint(const Model& m, const detail::CompiledConta
   PositionConstraintDef def;
   def.name = c.def.name;
   const ArgPoint P = arg_point(m, c.p, def.args), A = arg_point(m, c.a, def.args);
-  const ArgPoint B = c.def.target == ContactDef::Target::line ? arg_point(m, c.b, def.args) : A;
+  const bool two =
+      c.def.target == ContactDef::Target::line || c.def.target == ContactDef::Target::profile;
+  const ArgPoint B = two ? arg_point(m, c.b, def.args) : A;
   const ContactDef d = c.def;
-  def.psi = [P, A, B, d](std::span<const Jet> x, Jet) {
+  def.psi = [P, A, B, d, phi = c.phi](std::span<const Jet> x, Jet) mutable {
     const JetPoint p = at(P, x), a = at(A, x);
+    if (d.target == ContactDef::Target::profile) {
+      const JetPoint b = at(B, x);
+      return -detail::profile_gap(*d.profile, p[0], p[1], a[0], a[1], b[0], b[1], d.radius, phi,
+                                  d.name);
+    }
     if (d.target == ContactDef::Target::line) {
       const JetPoint b = at(B, x);
       return -detail::point_line_gap(p[0], p[1], a[0], a[1], b[0], b[1], d.radius);

@@ -130,6 +130,15 @@ void ContactRunner::check_excursion(double t, const Eigen::VectorXd& q0,
   }
 }
 
+// A contact's Error without a time (a gap that could not be evaluated: a profile's closest point
+// not found) again with the time t; one with a time as it is.
+namespace {
+[[noreturn]] void rethrow_contact_error_at(const Error& e, double t) {
+  if (!std::isnan(e.time())) throw e;
+  throw Error(std::string(e.what()) + " at t = " + fmt(t) + " s", e.element(), t);
+}
+}  // namespace
+
 Trajectory ContactRunner::leg(const State& s, double t1, int samples) {
   ForwardOptions o = inner_;
   const long steps_left = static_cast<long>(inner_.max_steps) - out_.stats.steps;
@@ -144,9 +153,19 @@ Trajectory ContactRunner::leg(const State& s, double t1, int samples) {
   o.samples = samples;
   ContactForces* f = forces_.get();
   o.extra_forces = [f](double t, const Eigen::VectorXd& q0, const Eigen::VectorXd& q1,
-                       Eigen::VectorXd& out) { return f->add(t, q0, q1, out); };
+                       Eigen::VectorXd& out) {
+    try {
+      return f->add(t, q0, q1, out);
+    } catch (const Error& e) {
+      rethrow_contact_error_at(e, t);
+    }
+  };
   o.stop_when = [this](double t, const Eigen::VectorXd& q0, const Eigen::VectorXd& q1) {
-    return event(t, q0, q1);
+    try {
+      return event(t, q0, q1);
+    } catch (const Error& e) {
+      rethrow_contact_error_at(e, t);
+    }
   };
   last_step_t_ = -1e300;
   std::fill(unslack_.begin(), unslack_.end(), 0);

@@ -1,8 +1,10 @@
 #pragma once
 // Internal to the contact stage (src/contact/): a contact compiled against a Model (its points
 // resolved to body points), its gap at a state (dispatched to the kinds: point_line.hpp,
-// circle_circle.hpp), and the gradient of a function of a body point in the node coordinates.
+// circle_circle.hpp, profile.hpp), and the gradient of a function of a body point in the node
+// coordinates.
 #include <Eigen/Core>
+#include <cmath>
 #include <string>
 #include <vector>
 
@@ -12,13 +14,16 @@
 namespace mo2d::detail {
 
 // A contact with its points resolved: p the moving point; a, b the line's points (or a the
-// circle's centre, or the slot's ends). A slot is three of these (slot.hpp): `part` says which
-// (-1: not a slot's part), `inside` whether the pin is in the slot (the run switches it).
+// circle's centre, the slot's ends, or the profile's centre and axis point). A slot is three of
+// these (slot.hpp): `part` says which (-1: not a slot's part), `inside` whether the pin is in the
+// slot (the run switches it). phi: a profile's last closest point (the next Newton's start; NaN:
+// none yet).
 struct CompiledContact {
   ContactDef def;
   BodyPoint p, a, b;
   int part = -1;
   bool inside = false;
+  mutable double phi = NAN;
 };
 
 // Resolves c's point names against m (a named point, a body node "body.node", a ground node).

@@ -22,6 +22,10 @@ int tangent_kind(const ContactDef& c) {
       break;
     case ContactDef::Target::slot:  // friction in a slot is refused (check_slot)
       throw Error("contact '" + c.name + "': a slot has no tangent (friction in a slot)", c.name);
+    case ContactDef::Target::profile:
+      throw Error("contact '" + c.name +
+                      "': the tangent of a cam profile is not implemented (no friction on it)",
+                  c.name);
   }
   return -1;
 }

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "contact/profile.hpp"
 #include "load_system.hpp"
 #include "model/suggest.hpp"
 
@@ -59,28 +60,67 @@ void read_slot(const Reader& r, const YAML::Node& value, const std::string& what
                                " m): the clearance is their difference");
 }
 
-// line: [a, b] | circle: c | hole: c, with target_radius for a circle or a hole | slot: [a, b]
-// with width.
+// profile: [centre, axis point] with table: the scene's table r(phi) (docs/scene-format.md).
+void read_profile(const Reader& r, const YAML::Node& value, const std::string& what,
+                  const SystemInfo& info, ContactDef& c) {
+  const YAML::Node t = value["profile"];
+  const std::string key = what + ".profile";
+  if (!t.IsSequence() || t.size() != 2)
+    r.fail(t, key + ": expected two points [centre, axis] (phi = 0 along centre -> axis)");
+  c.target = ContactDef::Target::profile;
+  c.a = point_of(r, t[0], key, info);
+  c.b = point_of(r, t[1], key, info);
+  if (c.a == c.b)
+    r.fail(t[1], key + ": the centre and the axis point are the same ('" + c.a + "')");
+  const YAML::Node table = r.required(value, "table", what);
+  const std::string name = r.string(table, what + ".table");
+  std::vector<std::string> names;
+  for (const auto& [n, tab] : r.tables) {
+    names.push_back(n);
+    if (n == name) c.profile = tab;
+  }
+  if (!c.profile)
+    r.fail(table, what + ".table: no table '" + name + "' in the scene's tables" +
+                      did_you_mean(name, names));
+  if (value["friction"].IsDefined())
+    r.fail(value["friction"], what +
+                                  ".friction: not supported on a cam profile (its tangent is "
+                                  "not implemented)");
+  const std::string problem = detail::profile_problem(*c.profile, c.radius);
+  if (!problem.empty()) r.fail(table, what + ": " + problem);
+}
+
+// line: [a, b] | circle: c | hole: c | slot: [a, b] | profile: [a, b], with target_radius for a
+// circle or a hole, width for a slot, table for a profile.
 void read_target(const Reader& r, const YAML::Node& value, const std::string& what,
                  const SystemInfo& info, ContactDef& c) {
-  const char* kinds[] = {"line", "circle", "hole", "slot"};
+  const char* kinds[] = {"line", "circle", "hole", "slot", "profile"};
   const char* given = nullptr;
   for (const char* k : kinds) {
     if (!value[k].IsDefined()) continue;
     if (given)
-      r.fail(value[k], what + ": give one target, 'line', 'circle', 'hole' or 'slot' (both '" +
-                           given + "' and '" + k + "' given)");
+      r.fail(value[k],
+             what + ": give one target, 'line', 'circle', 'hole', 'slot' or 'profile' (both '" +
+                 given + "' and '" + k + "' given)");
     given = k;
   }
   if (!given)
-    r.fail(value,
-           what + ": no target: give 'line: [A, B]', 'circle: C', 'hole: C' or 'slot: [A, B]'");
+    r.fail(value, what +
+                      ": no target: give 'line: [A, B]', 'circle: C', 'hole: C', 'slot: [A, B]' "
+                      "or 'profile: [C, A]'");
   if (std::string(given) != "slot" && value["width"].IsDefined())
     r.fail(value["width"], what + ".width: only for a slot");
+  if (std::string(given) != "profile" && value["table"].IsDefined())
+    r.fail(value["table"], what + ".table: only for a profile");
   if (std::string(given) == "slot") return read_slot(r, value, what, info, c);
   const YAML::Node t = value[given];
   const std::string key = what + "." + given;
   const YAML::Node radius = value["target_radius"];
+  if (std::string(given) == "profile") {
+    if (radius.IsDefined()) r.fail(radius, what + ".target_radius: only for a circle or a hole");
+    read_profile(r, value, what, info, c);
+    return;
+  }
   if (std::string(given) == "line") {
     if (!t.IsSequence() || t.size() != 2)
       r.fail(t, key + ": expected two points [A, B] (the free side is the left of A -> B)");
@@ -133,10 +173,11 @@ void read_contacts(const Reader& r, const YAML::Node& node, SystemInfo& info, Sc
   for (const auto& [key, value] : r.entries(node, "contacts")) {
     check_element_name(r, key, "contact");
     const std::string what = "contact '" + key.Scalar() + "'";
-    r.check_keys(value,
-                 {"point", "radius", "line", "circle", "hole", "slot", "target_radius", "width",
-                  "law", "restitution", "stiffness", "exponent", "min_approach_speed", "friction"},
-                 what);
+    r.check_keys(
+        value,
+        {"point", "radius", "line", "circle", "hole", "slot", "profile", "table", "target_radius",
+         "width", "law", "restitution", "stiffness", "exponent", "min_approach_speed", "friction"},
+        what);
     for (const ContactDef& c : scene.contacts)
       if (c.name == key.Scalar()) r.fail(key, what + ": defined twice");
     ContactDef c;

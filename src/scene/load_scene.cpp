@@ -272,6 +272,7 @@ void read_tables(Reader& r, const YAML::Node& node) {
       r.fail(file, e.what());
     }
     r.functions.push_back({name, [table](Jet x) { return (*table)(x); }});
+    r.tables.emplace_back(name, table);
   }
 }
 

@@ -13,6 +13,7 @@
 
 #include "mo2d/expression.hpp"
 #include "mo2d/scene.hpp"
+#include "mo2d/table.hpp"
 
 // A const look-up `node[key]` that finds nothing returns an invalid node carrying the key's text
 // (for the message of a later YAML::InvalidNode), which yaml-cpp 0.7 writes through a
@@ -46,6 +47,8 @@ struct Reader {
   // The scene's tables as functions of one argument, callable in every expression read after
   // them (Reader::expression passes them to Expression::parse).
   std::vector<NamedFunction> functions{};
+  // The same tables by name (a contact's cam profile names one).
+  std::vector<std::pair<std::string, std::shared_ptr<const LookupTable>>> tables{};
 
   Location at(const YAML::Node& node) const;
   [[noreturn]] void fail(const YAML::Node& node, const std::string& message) const;

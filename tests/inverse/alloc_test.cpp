@@ -22,9 +22,12 @@
 
 #include <Eigen/Core>
 #include <atomic>
+#include <cmath>
 #include <cstdio>
 #include <cstdlib>
+#include <memory>
 #include <new>
+#include <numbers>
 
 #include "contact/contact_forces.hpp"
 #include "contact/slot_set.hpp"
@@ -605,6 +608,58 @@ TEST(NoAllocation, SlotContact) {
   if (n.news != 0 || n.mallocs != 0) print_traces();
   EXPECT_NEAR(forces.lambda[0], 9.81, 1e-9);  // the wall holds the pin's weight
   EXPECT_NEAR(c, 100 * 0.1, 1e-9);            // inside: min(L - s, w/2 - |l|, s) = 0.1
+}
+
+// A cam profile's gap (src/contact/profile.hpp): its closest point's Newton from the previous one,
+// the gap on Jets and its gradient, and the gap alone (what the events watch), at moving states.
+TEST(NoAllocation, ProfileGap) {
+  mo2d::System sys("cam");
+  sys.add_ground_node("G", {0, 0});
+  sys.add_body({.name = "cam",
+                .nodes = {{"O", {0, 0}}, {"A", {0.03, 0}}},
+                .mass = 1,
+                .inertia = 1e-3,
+                .com = mo2d::CenterOfMass::between("O", "A", 0)});
+  sys.add_body({.name = "ball", .nodes = {{"C", {0.01, 0.06}}}, .mass = 1, .inertia = 1e-4});
+  const mo2d::Model model = mo2d::build_model(sys);
+  std::vector<double> x, y;
+  for (int i = 0; i <= 72; ++i) {
+    x.push_back(2 * std::numbers::pi * i / 72);
+    y.push_back(0.05 + 0.01 * std::cos(3 * x.back()));
+  }
+  mo2d::ContactLaw hard;
+  hard.kind = mo2d::ContactLaw::Kind::rigid;
+  const mo2d::detail::CompiledContact cc = mo2d::detail::compile_contact(
+      model, {.name = "cam",
+              .point = "ball.C",
+              .radius = 0.01,
+              .target = mo2d::ContactDef::Target::profile,
+              .a = "cam.O",
+              .b = "cam.A",
+              .profile = std::make_shared<const mo2d::LookupTable>(
+                  "r", x, y,
+                  mo2d::TableOptions{mo2d::Interpolation::cubic, mo2d::Extrapolation::periodic}),
+              .law = hard});
+  mo2d::GapValue g;
+  g.J = Eigen::VectorXd::Zero(model.n1);
+  Eigen::VectorXd q0 = model.q0, q1 = Eigen::VectorXd::Ones(model.n1);
+  const int c = model.bodies[1].nodes[0].var;
+  mo2d::detail::gap_into(model, cc, q0, q1, g);
+  double sum = 0;
+  Counts n;
+  {
+    CountAllocations scope;
+    for (int k = 0; k < 100; ++k) {
+      q0[c] = 0.01 + 1e-3 * k;  // the ball moves around the cam: the closest point follows
+      mo2d::detail::gap_into(model, cc, q0, q1, g);
+      sum += g.g + mo2d::detail::gap_only(model, cc, q0);
+    }
+    n = scope.stop();
+  }
+  EXPECT_EQ(n.news, 0) << "operator new calls in 100 evaluations";
+  EXPECT_EQ(n.mallocs, 0) << "malloc/calloc/realloc calls in 100 evaluations";
+  if (n.news != 0 || n.mallocs != 0) print_traces();
+  EXPECT_TRUE(std::isfinite(sum));
 }
 
 }  // namespace

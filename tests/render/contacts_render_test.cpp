@@ -3,6 +3,11 @@
 // point named.
 #include <gtest/gtest.h>
 
+#include <cmath>
+#include <memory>
+#include <numbers>
+#include <vector>
+
 #include "mo2d/mo2d.hpp"
 #include "mo2d/render.hpp"
 
@@ -133,6 +138,38 @@ TEST(ContactRender, AContactWithAnUnknownPointIsNamed) {
     EXPECT_NE(std::string(e.what()).find("contact 'floor'"), std::string::npos) << e.what();
     EXPECT_NE(std::string(e.what()).find("ground.L3"), std::string::npos) << e.what();
   }
+}
+
+// A cam profile r(phi) = 0.5 + 0.2 cos 2 phi on the bar around bar.O, its axis bar.O -> bar.A
+// (along +x), touched by the point ground.C: the closed curve of its spline drawn through
+// (0.7, 0), (0, 0.3), (-0.7, 0), (0, -0.3), nothing inside or outside it.
+TEST(ContactRender, ProfileIsDrawnAsItsClosedCurveOnItsBody) {
+  const Model m = contact_bar();
+  const Motion motion = single_configuration(m.q0);
+  FrameOptions o = contact_window();
+  const Image without = render_frame(m, motion, 0, o);
+  std::vector<double> x, y;
+  for (int i = 0; i <= 72; ++i) {
+    x.push_back(2 * std::numbers::pi * i / 72);
+    y.push_back(0.5 + 0.2 * std::cos(2 * x.back()));
+  }
+  ContactDef cam{.name = "cam", .point = "ground.C", .radius = 0};
+  cam.target = ContactDef::Target::profile;
+  cam.a = "bar.O";
+  cam.b = "bar.A";
+  cam.profile = std::make_shared<const LookupTable>(
+      "r", x, y, TableOptions{Interpolation::cubic, Extrapolation::periodic});
+  cam.law.kind = ContactLaw::Kind::rigid;
+  o.contacts = {cam};
+  const Image with = render_frame(m, motion, 0, o);
+  for (const auto& [px, py] : {std::pair{0.7, 0.0}, std::pair{0.0, 0.3}, std::pair{-0.7, 0.0},
+                               std::pair{0.0, -0.3}, std::pair{0.3536, 0.3536}}) {
+    EXPECT_EQ(contact_pixel(without, px, py), kContactPaper) << px << ", " << py;
+    EXPECT_NE(contact_pixel(with, px, py), kContactPaper) << px << ", " << py;
+  }
+  for (const auto& [px, py] : {std::pair{0.0, 0.15}, std::pair{0.0, 0.45}, std::pair{-0.85, 0.0},
+                               std::pair{-0.5, 0.0}, std::pair{0.0, -0.15}})
+    EXPECT_EQ(contact_pixel(with, px, py), kContactPaper) << px << ", " << py;
 }
 
 }  // namespace

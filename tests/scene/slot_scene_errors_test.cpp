@@ -88,8 +88,8 @@ TEST(SlotSceneErrors, SlotTargets) {
                     "target_radius: only for a circle or a hole");
   expect_slot_error(slot_replaced("    law:", "    line: [ground.A, ground.B]\n    law:"),
                     "bad.yaml:13:11",
-                    "give one target, 'line', 'circle', 'hole' or 'slot' (both 'line' and 'slot' "
-                    "given)");
+                    "give one target, 'line', 'circle', 'hole', 'slot' or 'profile' (both 'line' "
+                    "and 'slot' given)");
   expect_slot_error(slot_replaced("restitution: 0.5", "restitution: 0.5\n    friction: 0.2"),
                     "bad.yaml:17:15",
                     "contact 'slot'.friction: friction in a slot is not modelled");
