@@ -95,6 +95,12 @@ InverseSensitivity inverse_dynamics_sensitivity(const Model& m,
                                                 std::span<const ParameterModels> parameters,
                                                 Trajectory& r);
 
+// The label of the derivative of column `label` to parameter `p`: "d(label)/d(p)".
+std::string sensitivity_label(const std::string& label, const std::string& p);
+// Adds to r's output columns d(effort)/d(p) for every input, then d(reaction)/d(p) for every
+// reaction, parameter by parameter (the CSV of mo2d inverse --sensitivity).
+void add_sensitivity_columns(Trajectory& r, const InverseSensitivity& d);
+
 // The summary values of a column x(t) at the samples (as mo2d optimize reads them: peak = max |x|
 // at the samples, mean and RMS by the trapezoid rule) and their derivatives given dx/dp at the
 // samples (chain rule; a peak, max or min: the derivative at its sample).
