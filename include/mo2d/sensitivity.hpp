@@ -60,7 +60,8 @@ double sensitivity_step(double value);
 void check_parameter_models(const Model& m, const ParameterModels& p);
 
 // Workspace of the sensitivities of one run (allocated once; inverse_sensitivity_sample does not
-// allocate).
+// allocate, except for a model with user constraints, whose rows it compares per sample, and on
+// its error paths).
 struct SensitivityData {
   SensitivityData(const Model& m, std::span<const ParameterModels> parameters);
   // d efforts / dp and d reactions / dp of the last sample, one column per parameter
