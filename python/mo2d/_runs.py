@@ -55,7 +55,7 @@ def _with(scene, settings, keys):
 
 
 def inverse(scene, *, t0=None, duration=None, samples=None, tolerance=None, max_steps=None,
-            max_seconds=None, max_memory=None, measures=False):
+            max_seconds=None, max_memory=None, measures=False, sensitivity=None):
     """Inverse dynamics of a scene, as `mo2d inverse` runs it (no files written).
 
     scene: a mo2d.Scene (mo2d.load_scene). The run settings given replace the scene's run:
@@ -70,6 +70,11 @@ def inverse(scene, *, t0=None, duration=None, samples=None, tolerance=None, max_
     shaking force and moment, every joint's bearing load; the scene's design: block adds its
     own either way): columns r["frame.shaking.Fx"], ..., and the summary r.design
     (docs/design.md).
+    sensitivity: names of the scene's parameters (a list, or one string "m1,k"), as `mo2d inverse
+    --sensitivity`: adds the exact derivative of every effort and reaction column to each,
+    r["d(crank_pivot.torque)/d(m1)"] (docs/design.md, "Sensitivities"). Only parameters that set
+    mass data and load coefficients; one that changes the geometry or the motion raises
+    mo2d.Error naming it and what it changes.
 
     Example::
 
@@ -78,7 +83,11 @@ def inverse(scene, *, t0=None, duration=None, samples=None, tolerance=None, max_
     """
     settings = dict(t0=t0, duration=duration, samples=samples, tolerance=tolerance,
                     max_steps=max_steps, max_seconds=max_seconds, max_memory=max_memory)
-    return _mo2d._inverse(_with(scene, settings, INVERSE_KEYS), measures)
+    if sensitivity is None:
+        sensitivity = []
+    elif isinstance(sensitivity, str):
+        sensitivity = [n.strip() for n in sensitivity.split(",") if n.strip()]
+    return _mo2d._inverse(_with(scene, settings, INVERSE_KEYS), measures, list(sensitivity))
 
 
 def forward(scene, *, t0=None, duration=None, samples=None, integrator=None, formulation=None,

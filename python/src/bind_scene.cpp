@@ -16,6 +16,7 @@
 #include "mo2d/crosscheck.hpp"
 #include "mo2d/mo2d.hpp"
 #include "mo2d/scene.hpp"
+#include "mo2d/scene_sensitivity.hpp"
 
 namespace mo2d::py_bind {
 
@@ -65,7 +66,8 @@ std::shared_ptr<Model> scene_model(const Scene& s) {
   return std::make_shared<Model>(build_scene_model(s, b));
 }
 
-Result run_inverse(const Scene& scene, bool measures) {
+Result run_inverse(const SourcedScene& scene, bool measures,
+                   const std::vector<std::string>& sensitivity) {
   // with contacts: those closed at the start held closed (docs/contact.md, "Inverse dynamics")
   BuildOptions b;
   b.max_memory = scene.run.max_memory;
@@ -74,12 +76,22 @@ Result run_inverse(const Scene& scene, bool measures) {
   check_inverse_motion(scene, *model, held.contacts);
   const InverseOptions run = inverse_options(scene);
   check_scene_options(scene, *model, run);
-  Trajectory r = inverse_dynamics(*model, scene.motion, run);
+  Trajectory r;
+  InverseSensitivity sens;
+  if (sensitivity.empty()) {
+    r = inverse_dynamics(*model, scene.motion, run);
+  } else {  // exact derivatives (mo2d/sensitivity.hpp), the scene read again per parameter
+    const std::vector<ParameterModels> p =
+        scene_parameter_models(scene.text, scene, to_overrides(scene.set_overrides),
+                               to_run_overrides(scene.run_overrides), sensitivity, *model, b, run);
+    sens = inverse_dynamics_sensitivity(*model, scene.motion, run, p, r);
+  }
   scene_inverse_contacts(scene, *model, held.contacts, run, r);
   add_output_columns(*model, r, scene.outputs);
   const Eigen::Index n = r.outputs.cols();  // the design columns follow (not located)
   const std::optional<DesignRequest> design = design_of(scene, measures);
   if (design) add_design_columns(*model, r, *design);
+  if (!sensitivity.empty()) add_sensitivity_columns(r, sens);  // d(COLUMN)/d(NAME), not located
   Result out = make_result(model, std::move(r));
   out.design = design;
   out.contacts = std::move(held.contacts);
@@ -259,8 +271,12 @@ void bind_scene(py::module_& m) {
       py::arg("text"), py::arg("file_name") = "<scene>", py::arg("overrides") = Overrides{},
       py::arg("run") = Overrides{});
   m.def(
-      "_inverse", [](const SourcedScene& s, bool measures) { return run_inverse(s, measures); },
-      py::arg("scene"), py::arg("measures") = false, py::call_guard<py::gil_scoped_release>(),
+      "_inverse",
+      [](const SourcedScene& s, bool measures, const std::vector<std::string>& sensitivity) {
+        return run_inverse(s, measures, sensitivity);
+      },
+      py::arg("scene"), py::arg("measures") = false,
+      py::arg("sensitivity") = std::vector<std::string>{}, py::call_guard<py::gil_scoped_release>(),
       "inverse dynamics of a scene, as `mo2d inverse` runs it (no files written)");
   m.def(
       "_forward", [](const SourcedScene& s, bool measures) { return run_forward(s, measures); },

@@ -25,9 +25,11 @@
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
+#include <fstream>
 #include <memory>
 #include <new>
 #include <numbers>
+#include <sstream>
 
 #include "contact/contact_forces.hpp"
 #include "contact/slot_set.hpp"
@@ -38,6 +40,8 @@
 #include "mo2d/mechanisms.hpp"
 #include "mo2d/model.hpp"
 #include "mo2d/scene.hpp"
+#include "mo2d/scene_sensitivity.hpp"
+#include "mo2d/sensitivity.hpp"
 
 #if defined(__SANITIZE_ADDRESS__)
 #define MO2D_ALLOC_TEST_ASAN 1
@@ -348,6 +352,39 @@ TEST(NoAllocation, SliderCrankWithFrictionSample) {
 TEST(NoAllocation, Rrr3SceneSample) {
   const mo2d::Scene s = mo2d::load_scene(std::string(MO2D_MECHANISMS_DIR) + "/rrr3.yaml");
   expect_no_allocation({s.system, s.motion, mo2d::inverse_options(s)});
+}
+
+// The exact sensitivities of a sample (mo2d/sensitivity.hpp) reuse SensitivityData: the scene's
+// slider-crank, its three masses and gravity.
+TEST(NoAllocation, SensitivitySample) {
+  const std::string path = std::string(MO2D_MECHANISMS_DIR) + "/slider_crank.yaml";
+  std::ifstream in(path);
+  std::ostringstream text;
+  text << in.rdbuf();
+  const mo2d::Scene s = mo2d::parse_scene(text.str(), path);
+  const mo2d::Model m = mo2d::build_scene_model(s);
+  const mo2d::InverseOptions o = mo2d::inverse_options(s);
+  const std::vector<std::string> names{"m_crank", "m_rod", "m_slider", "gravity"};
+  const auto p = mo2d::scene_parameter_models(text.str(), s, {}, {}, names, m, {}, o);
+  mo2d::InverseData d(m, s.motion, o);
+  mo2d::SensitivityData sd(m, p);
+  for (int k = 0; k < 5; ++k) {
+    mo2d::inverse_dynamics_sample(m, d, 0.01 * k);
+    mo2d::inverse_sensitivity_sample(m, d, p, sd);
+  }
+  Counts c;
+  {
+    CountAllocations scope;
+    for (int k = 5; k < 105; ++k) {
+      mo2d::inverse_dynamics_sample(m, d, 0.005 * k);
+      mo2d::inverse_sensitivity_sample(m, d, p, sd);
+    }
+    c = scope.stop();
+  }
+  EXPECT_EQ(c.news, 0) << "operator new calls in 100 samples with sensitivities";
+  EXPECT_EQ(c.mallocs, 0) << "malloc/calloc/realloc calls in 100 samples with sensitivities";
+  if (c.news != 0 || c.mallocs != 0) print_traces();
+  EXPECT_GT(sd.efforts.norm(), 0);
 }
 
 // One evaluation of forward dynamics on its public workspace (forward_accelerations, the
