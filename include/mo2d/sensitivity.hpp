@@ -63,6 +63,7 @@ void check_parameter_models(const Model& m, const ParameterModels& p);
 // allocate, except for a model with user constraints, whose rows it compares per sample, and on
 // its error paths).
 struct SensitivityData {
+  // sized for model m and `parameters` (one column per parameter)
   SensitivityData(const Model& m, std::span<const ParameterModels> parameters);
   // d efforts / dp and d reactions / dp of the last sample, one column per parameter
   Eigen::MatrixXd efforts, reactions;
@@ -111,6 +112,7 @@ struct SummaryDerivative {
   // their derivatives to the parameter
   double d_peak = 0, d_max = 0, d_min = 0, d_mean = 0, d_rms = 0, d_peak_to_peak = 0;
 };
+// The summary values of x at the samples t and their derivatives given dx (SummaryDerivative).
 SummaryDerivative summary_derivative(const Eigen::Ref<const Eigen::VectorXd>& t,
                                      const Eigen::Ref<const Eigen::VectorXd>& x,
                                      const Eigen::Ref<const Eigen::VectorXd>& dx);

@@ -29,6 +29,7 @@ const char* const kAllowedRefusals[] = {"user position constraint",
                                         "reduced to a constraint is not translated",
                                         "a pin in a hole",
                                         "a pin in a slot",
+                                        "a cam profile",
                                         "Coulomb friction ("};
 
 struct SceneOutcome {
