@@ -443,9 +443,9 @@ void finish_inverse_warnings(InverseData& d) {
                        d.near_what + ")");
 }
 
-Trajectory inverse_dynamics(const Model& m, std::span<const Prescribed> prescribed,
-                            const InverseOptions& options) {
-  InverseData d(m, prescribed, options);
+Trajectory detail::inverse_run(const Model& m, InverseData& d, const InverseOptions& options,
+                               const std::string& run,
+                               const std::function<void(int)>& after_sample) {
   const int N = options.samples;
   Trajectory r = detail::labelled_trajectory(m, RunKind::inverse);
   r.time.resize(N);
@@ -456,7 +456,7 @@ Trajectory inverse_dynamics(const Model& m, std::span<const Prescribed> prescrib
   r.reactions.resize(N, m.n_reactions());
   r.residuals.resize(N, 3);
   const double start = detail::cpu_seconds();
-  detail::RunBudget budget({.run = "inverse dynamics of '" + m.name + "'",
+  detail::RunBudget budget({.run = run,
                             .name = m.name,
                             .t0 = options.t0,
                             .t1 = options.t1,
@@ -470,6 +470,7 @@ Trajectory inverse_dynamics(const Model& m, std::span<const Prescribed> prescrib
     const double t = detail::sample_time(options.t0, options.t1, N, k);
     budget.check(t, k, 0);
     inverse_dynamics_sample(m, d, t);
+    if (after_sample) after_sample(k);
     r.time[k] = t;
     detail::set_row(r.q0, k, d.q0);
     detail::set_row(r.q1, k, d.q1);
@@ -483,6 +484,12 @@ Trajectory inverse_dynamics(const Model& m, std::span<const Prescribed> prescrib
   detail::reduced_spring_slack(m, r, r.stats.warnings);
   r.stats.cpu_seconds = detail::cpu_seconds() - start;
   return r;
+}
+
+Trajectory inverse_dynamics(const Model& m, std::span<const Prescribed> prescribed,
+                            const InverseOptions& options) {
+  InverseData d(m, prescribed, options);
+  return detail::inverse_run(m, d, options, "inverse dynamics of '" + m.name + "'", {});
 }
 
 }  // namespace mo2d

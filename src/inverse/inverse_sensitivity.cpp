@@ -7,18 +7,13 @@
 #include <string>
 
 #include "dynamics/reactions.hpp"
-#include "dynamics/slack.hpp"
+#include "inverse/inverse_stages.hpp"
 #include "linalg/pattern_lu.hpp"
 #include "mo2d/dynamics.hpp"
 #include "mo2d/error.hpp"
 #include "mo2d/kinematics.hpp"
 #include "mo2d/sensitivity.hpp"
-#include "output/result_rows.hpp"
-#include "output/trajectory_labels.hpp"
-#include "run/cpu_time.hpp"
 #include "run/format.hpp"
-#include "run/run_budget.hpp"
-#include "run/time_grid.hpp"
 
 namespace mo2d {
 
@@ -161,46 +156,14 @@ InverseSensitivity inverse_dynamics_sensitivity(const Model& m,
     out.efforts.emplace_back(N, m.n_inputs());
     out.reactions.emplace_back(N, m.n_reactions());
   }
-  r = detail::labelled_trajectory(m, RunKind::inverse);
-  r.time.resize(N);
-  r.q0.resize(N, m.n0);
-  r.q1.resize(N, m.n1);
-  r.a1.resize(N, m.n1);
-  r.efforts.resize(N, m.n_inputs());
-  r.reactions.resize(N, m.n_reactions());
-  r.residuals.resize(N, 3);
-  const double start = detail::cpu_seconds();
-  detail::RunBudget budget({.run = "inverse dynamics of '" + m.name + "' with sensitivities",
-                            .name = m.name,
-                            .t0 = options.t0,
-                            .t1 = options.t1,
-                            .max_steps = 0,
-                            .max_seconds = options.max_seconds,
-                            .monitor = options.monitor,
-                            .interval = options.monitor_interval,
-                            .hint = "use fewer samples",
-                            .unit = "samples solved"});
-  for (int i = 0; i < N; ++i) {
-    const double t = detail::sample_time(options.t0, options.t1, N, i);
-    budget.check(t, i, 0);
-    inverse_dynamics_sample(m, d, t);
-    inverse_sensitivity_sample(m, d, parameters, s);
-    r.time[i] = t;
-    detail::set_row(r.q0, i, d.q0);
-    detail::set_row(r.q1, i, d.q1);
-    detail::set_row(r.a1, i, d.a1);
-    detail::set_row(r.efforts, i, d.u);
-    detail::set_row(r.reactions, i, d.reactions);
-    r.residuals.row(i) << d.residual_position, d.residual_velocity, d.residual_acceleration;
-    for (int j = 0; j < k; ++j) {
-      out.efforts[j].row(i) = s.efforts.col(j).transpose();
-      out.reactions[j].row(i) = s.reactions.col(j).transpose();
-    }
-  }
-  finish_inverse_warnings(d);
-  r.stats.warnings = d.warnings;
-  detail::reduced_spring_slack(m, r, r.stats.warnings);
-  r.stats.cpu_seconds = detail::cpu_seconds() - start;
+  r = detail::inverse_run(m, d, options, "inverse dynamics of '" + m.name + "' with sensitivities",
+                          [&](int i) {
+                            inverse_sensitivity_sample(m, d, parameters, s);
+                            for (int j = 0; j < k; ++j) {
+                              out.efforts[j].row(i) = s.efforts.col(j).transpose();
+                              out.reactions[j].row(i) = s.reactions.col(j).transpose();
+                            }
+                          });
   return out;
 }
 
